@@ -1,0 +1,51 @@
+// Envmap rendering speed on the bundled example room (5 x 64^3), 240x120, at several
+// points and step settings. Run: build/bench/lighthouse_bench [--benchmark_filter=...]
+#include "render/envmap.h"
+#include "vdb/example_volume.h"
+
+#include <benchmark/benchmark.h>
+
+namespace {
+
+const lh::RenderVolume& exampleRoom() {
+    static const lh::RenderVolume volume(lh::makeExampleVolume(5, 64));
+    return volume;
+}
+
+const lh::Vec3d kPoints[] = {lh::Vec3d(0, 0, 2), lh::Vec3d(0.2, 0.1, 0.4), lh::Vec3d(-1, 0.5, 4)};
+
+void BM_EnvmapExampleRoom(benchmark::State& state) {
+    lh::EnvmapOptions options;
+    options.march.stepVoxels = double(state.range(0)) / 100.0;
+    std::size_t i = 0;
+    for (auto _ : state) {
+        lh::ImageRGB env = lh::renderEnvmap(exampleRoom(), kPoints[i++ % 3], options);
+        benchmark::DoNotOptimize(env.pixels.data());
+    }
+    state.SetLabel("step " + std::to_string(options.march.stepVoxels) + " voxels");
+    state.counters["envmaps/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EnvmapExampleRoom)->Arg(25)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_EnvmapReference(benchmark::State& state) {
+    lh::EnvmapOptions options;
+    options.march = lh::MarchOptions::reference();
+    for (auto _ : state) {
+        lh::ImageRGB env = lh::renderEnvmap(exampleRoom(), kPoints[0], options);
+        benchmark::DoNotOptimize(env.pixels.data());
+    }
+}
+BENCHMARK(BM_EnvmapReference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+
+void BM_PrepareRenderVolume(benchmark::State& state) {
+    const lh::LightingVolume volume = lh::makeExampleVolume(5, 64);
+    for (auto _ : state) {
+        lh::RenderVolume prepared(volume);
+        benchmark::DoNotOptimize(prepared.levels.data());
+    }
+}
+BENCHMARK(BM_PrepareRenderVolume)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,26 @@
+// Small helpers shared by the subcommands: parsing user values and loading volumes with
+// warnings printed once.
+#pragma once
+
+#include "core/camera.h"
+#include "vdb/lighting_volume.h"
+
+#include <string>
+#include <vector>
+
+namespace lh::cli {
+
+// "X,Y,Z" (or space separated) -> finite point; throws InputError naming `what`.
+Vec3d parsePoint(const std::string& text, const std::string& what);
+// A text file with one point per line ("x y z" or "x,y,z"; '#' starts a comment).
+std::vector<Vec3d> readPointsFile(const std::string& path);
+// "WxH" -> (W, H); throws InputError.
+void parseSize(const std::string& text, int& width, int& height);
+// Loads a volume, printing sanitising warnings to stderr.
+LightingVolume loadVolumeForCli(const std::string& path, bool strict);
+// "out.exr", 3 -> "out_003.exr"
+std::string numberedPath(const std::string& path, int index);
+// Replaces the extension: ("a/b.exr", ".png") -> "a/b.png".
+std::string withExtension(const std::string& path, const std::string& extension);
+
+}  // namespace lh::cli

@@ -1,0 +1,56 @@
+// `lighthouse make-example -o example.vdb [--cameras cameras.json]`: the bundled example room,
+// built by code (vdb/example_volume.h), for demos and tests.
+#include "cli/commands.h"
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "vdb/example_volume.h"
+#include "vdb/volume_io.h"
+
+#include <fstream>
+#include <iostream>
+
+namespace lh::cli {
+
+namespace {
+
+struct MakeExampleOptions {
+    std::string output;
+    std::string cameras;
+    int levels = 5;
+    int resolution = 64;
+    bool half = false;
+};
+
+void makeExample(const MakeExampleOptions& o) {
+    VolumeLayout::fromFarDepth(7.0, o.levels, o.resolution);  // validates before any work
+    const LightingVolume volume = makeExampleVolume(o.levels, o.resolution);
+    saveVolume(o.output, volume, VolumeSaveOptions{o.half});
+    std::cerr << "example room: " << volume.levels.size() << " levels of " << o.resolution
+              << "^3, " << volume.activeVoxelCount() << " active voxels -> " << o.output << "\n";
+    if (!o.cameras.empty()) {
+        AtomicOutput out(o.cameras);
+        {
+            std::ofstream f(out.tempPath());
+            f << camerasToJson(exampleCameras()) << "\n";
+            if (!f) throw FileError("cannot write '" + o.cameras + "'");
+        }
+        out.commit();
+        std::cerr << "cameras -> " << o.cameras << "\n";
+    }
+}
+
+}  // namespace
+
+void addMakeExampleCommand(CLI::App& app) {
+    auto o = std::make_shared<MakeExampleOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "make-example", "Write the bundled example lighting volume (a procedural room)");
+    cmd->add_option("-o,--output", o->output, "Output .vdb")->required();
+    cmd->add_option("--cameras", o->cameras, "Also write the example's cameras.json here");
+    cmd->add_option("--levels", o->levels, "Number of nested levels")->capture_default_str();
+    cmd->add_option("--res", o->resolution, "Voxels per side of every level")->capture_default_str();
+    cmd->add_flag("--half", o->half, "Store values as 16-bit halves on disk");
+    cmd->callback([o] { makeExample(*o); });
+}
+
+}  // namespace lh::cli

@@ -1,0 +1,15 @@
+// Subcommands of the `lighthouse` binary, one file each. Each registers itself on the app:
+// it parses into an options struct and calls one library entry point. Errors propagate as
+// lh::Error to main, which prints one line and returns non-zero.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace lh::cli {
+
+void addInfoCommand(CLI::App& app);
+void addRenderEnvmapCommand(CLI::App& app);
+void addRenderViewCommand(CLI::App& app);
+void addMakeExampleCommand(CLI::App& app);
+
+}  // namespace lh::cli

@@ -1,0 +1,46 @@
+// lighthouse: one binary, one subcommand per file. Library errors are caught here once and
+// reported as a single line with a non-zero exit (OpenVDB's vdb_render model).
+#include "cli/commands.h"
+#include "core/errors.h"
+
+#include <openvdb/openvdb.h>
+#include <tbb/global_control.h>
+
+#include <iostream>
+#include <memory>
+
+int main(int argc, char** argv) {
+    CLI::App app{"lighthouse: predict, store and render spatially-coherent lighting volumes"};
+    app.require_subcommand(1);
+    app.set_help_all_flag("--help-all", "Show help for every command");
+    int threads = 0;
+    app.add_option("--threads", threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(0, 1024));
+    lh::cli::addInfoCommand(app);
+    lh::cli::addRenderEnvmapCommand(app);
+    lh::cli::addRenderViewCommand(app);
+    lh::cli::addMakeExampleCommand(app);
+
+    std::unique_ptr<tbb::global_control> threadLimit;
+    app.parse_complete_callback([&] {
+        if (threads > 0)
+            threadLimit = std::make_unique<tbb::global_control>(
+                tbb::global_control::max_allowed_parallelism, threads);
+    });
+    try {
+        openvdb::initialize();
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const lh::Error& e) {
+        std::cerr << "lighthouse: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "lighthouse: error: out of memory; try a smaller size or volume\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "lighthouse: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,56 @@
+#include "core/atomic_file.h"
+
+#include "core/errors.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <filesystem>
+#include <system_error>
+#include <unistd.h>
+
+namespace lh {
+
+namespace fs = std::filesystem;
+
+AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPath)) {
+    if (finalPath_.empty()) throw FileError("output path is empty");
+    fs::path p(finalPath_);
+    fs::path dir = p.parent_path();
+    if (!dir.empty() && !fs::is_directory(dir))
+        throw FileError("cannot write '" + finalPath_ + "': directory '" + dir.string() +
+                        "' does not exist");
+    if (fs::is_directory(p))
+        throw FileError("cannot write '" + finalPath_ + "': it is a directory");
+    // Unique per process and per call: concurrent writers never share a temporary.
+    static std::atomic<unsigned> counter{0};
+    std::string ext = p.extension().string();  // keep the extension: some writers check it
+    tempPath_ = (dir / ("." + p.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
+                        std::to_string(counter++) + ext))
+                    .string();
+}
+
+AtomicOutput::~AtomicOutput() {
+    if (!committed_) {
+        std::error_code ec;
+        fs::remove(tempPath_, ec);
+    }
+}
+
+void AtomicOutput::commit() {
+    std::error_code ec;
+    if (!fs::exists(tempPath_, ec))
+        throw FileError("writing '" + finalPath_ + "' produced no data");
+    fs::rename(tempPath_, finalPath_, ec);
+    if (ec) throw FileError("cannot write '" + finalPath_ + "': " + ec.message());
+    committed_ = true;
+}
+
+std::string fileExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace lh

@@ -1,0 +1,33 @@
+// Write-to-temporary-then-rename, so that a failed or interrupted write never leaves a
+// half-written output under the final name.
+#pragma once
+
+#include <string>
+
+namespace lh {
+
+class AtomicOutput {
+public:
+    // Prepares a temporary path next to `finalPath` (same directory, so rename is atomic).
+    // Throws FileError if the directory does not exist.
+    explicit AtomicOutput(std::string finalPath);
+    ~AtomicOutput();  // removes the temporary file unless commit() succeeded
+    AtomicOutput(const AtomicOutput&) = delete;
+    AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+    // Where the writer should write.
+    const std::string& tempPath() const { return tempPath_; }
+    const std::string& finalPath() const { return finalPath_; }
+    // Renames the temporary file onto the final path. Throws FileError on failure.
+    void commit();
+
+private:
+    std::string finalPath_;
+    std::string tempPath_;
+    bool committed_ = false;
+};
+
+// Lower-cased extension including the dot (".exr"), or "" if none.
+std::string fileExtension(const std::string& path);
+
+}  // namespace lh

@@ -1,0 +1,25 @@
+// Rendering equirectangular environment maps (CONVENTIONS.md layout) from a lighting volume.
+#pragma once
+
+#include "render/image.h"
+#include "render/ray_marcher.h"
+
+namespace lh {
+
+struct EnvmapOptions {
+    int width = 240;   // W = 2 H
+    int height = 120;
+    MarchOptions march;
+
+    // Throws InputError unless W = 2 H >= 2, ResourceError above kMaxEnvmapPixels.
+    void validate() const;
+};
+
+// Bound on envmap size: 2^27 pixels is 1.5 GiB of float RGB.
+constexpr long long kMaxEnvmapPixels = 1LL << 27;
+
+// Incident radiance at `position` (world frame) from every direction. Rows run in parallel.
+ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
+                      const EnvmapOptions& options = {});
+
+}  // namespace lh

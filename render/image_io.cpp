@@ -1,0 +1,216 @@
+#include "render/image_io.h"
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <system_error>
+#include <vector>
+
+namespace lh {
+
+namespace {
+
+constexpr std::size_t kPixelBytes = 3 * sizeof(float);  // one interleaved RGB pixel
+const char* const kRgbNames[3] = {"R", "G", "B"};
+
+std::string sizeText(std::int64_t width, std::int64_t height) {
+    return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// Library messages may span lines; ours are one line so the CLI can print them as is.
+std::string oneLine(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    return text;
+}
+
+// Writes refuse what readImage would refuse, so every written file can be read back.
+void checkWritable(const ImageRGB& image, const std::string& path) {
+    const std::string prefix = "cannot write '" + path + "': ";
+    if (image.width <= 0 || image.height <= 0)
+        throw InputError(prefix + "image is empty (" + sizeText(image.width, image.height) + ")");
+    const std::size_t expected = std::size_t(image.width) * std::size_t(image.height) * 3;
+    if (image.pixels.size() != expected)
+        throw InputError(prefix + "image is " + sizeText(image.width, image.height) +
+                         " but holds " + std::to_string(image.pixels.size()) +
+                         " floats instead of " + std::to_string(expected));
+    if (image.width > kMaxImagePixels / image.height)
+        throw ResourceError(prefix + "image is " + sizeText(image.width, image.height) +
+                            ", more than " + std::to_string(kMaxImagePixels) + " pixels");
+}
+
+// Checked before allocating, because the size comes from an untrusted header.
+void checkReadableSize(std::int64_t width, std::int64_t height, const std::string& path) {
+    const std::string prefix = "cannot read '" + path + "': ";
+    if (width <= 0 || height <= 0)
+        throw FileError(prefix + "invalid image size " + sizeText(width, height));
+    if (width > kMaxImagePixels / height)
+        throw ResourceError(prefix + "image is " + sizeText(width, height) + ", more than " +
+                            std::to_string(kMaxImagePixels) + " pixels");
+}
+
+ImageRGB readExr(const std::string& path) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i window = file.header().dataWindow();
+        const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+        const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+        checkReadableSize(width, height, path);
+
+        const Imf::ChannelList& channels = file.header().channels();
+        const bool grey = !channels.findChannel("R") && !channels.findChannel("G") &&
+                          !channels.findChannel("B");
+        if (grey && !channels.findChannel("Y"))
+            throw FileError("cannot read '" + path + "': it has no R, G, B or Y channel");
+
+        // OpenEXR converts every pixel type to FLOAT and fills absent channels with 0.
+        // Slice::Make offsets the pointer by the data window origin.
+        ImageRGB image(static_cast<int>(width), static_cast<int>(height));  // fits: checked above
+        const std::size_t rowBytes = kPixelBytes * std::size_t(width);
+        auto slice = [&](int c) {
+            return Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, window, kPixelBytes,
+                                    rowBytes);
+        };
+        Imf::FrameBuffer frame;
+        if (grey) {
+            frame.insert("Y", slice(0));
+        } else {
+            for (int c = 0; c < 3; ++c) frame.insert(kRgbNames[c], slice(c));
+        }
+        file.setFrameBuffer(frame);
+        file.readPixels(window.min.y, window.max.y);
+
+        if (grey) {
+            for (std::size_t i = 0; i < image.pixels.size(); i += 3)
+                image.pixels[i + 1] = image.pixels[i + 2] = image.pixels[i];
+        }
+        return image;
+    } catch (const Error&) {  // ours (e.g. ResourceError) pass through unchanged
+        throw;
+    } catch (const std::exception& e) {  // Iex::BaseExc derives from std::exception
+        throw FileError("cannot read '" + path + "': " + oneLine(e.what()));
+    }
+}
+
+std::string stbReason() {
+    const char* reason = stbi_failure_reason();
+    return reason ? reason : "unknown decoder error";
+}
+
+ImageRGB readStb(const std::string& path) {
+    int width = 0, height = 0, fileChannels = 0;
+    // Header only: the size is checked before stb allocates the pixels.
+    if (!stbi_info(path.c_str(), &width, &height, &fileChannels))
+        throw FileError("cannot read '" + path + "': " + stbReason());
+    checkReadableSize(width, height, path);
+
+    const int wantedChannels = 3;  // stb converts grey and alpha images to RGB
+    std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> bytes(
+        stbi_load(path.c_str(), &width, &height, &fileChannels, wantedChannels),
+        &stbi_image_free);
+    if (!bytes) throw FileError("cannot read '" + path + "': " + stbReason());
+
+    static const std::array<float, 256> toLinear = [] {
+        std::array<float, 256> table{};
+        for (int i = 0; i < 256; ++i) table[i] = srgbDecode(i / 255.0f);
+        return table;
+    }();
+    ImageRGB image(width, height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = toLinear[bytes.get()[i]];
+    return image;
+}
+
+}  // namespace
+
+// Evaluated in double so that decode(encode(x)) returns x to ~1e-7.
+float srgbEncode(float linear) {
+    const double v = linear;
+    return float(v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055);
+}
+
+float srgbDecode(float encoded) {
+    const double v = encoded;
+    return float(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+}
+
+void writeExr(const ImageRGB& image, const std::string& path) {
+    checkWritable(image, path);
+    AtomicOutput out(path);
+    try {
+        Imf::Header header(image.width, image.height);
+        header.compression() = Imf::ZIP_COMPRESSION;  // lossless
+        Imf::FrameBuffer frame;
+        for (int c = 0; c < 3; ++c) {
+            header.channels().insert(kRgbNames[c], Imf::Channel(Imf::FLOAT));
+            frame.insert(kRgbNames[c],
+                         Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c,
+                                          header.dataWindow(), kPixelBytes,
+                                          kPixelBytes * std::size_t(image.width)));
+        }
+        Imf::OutputFile file(out.tempPath().c_str(), header);  // closed at end of scope
+        file.setFrameBuffer(frame);
+        file.writePixels(image.height);
+    } catch (const std::exception& e) {  // Iex::BaseExc derives from std::exception
+        throw FileError("cannot write '" + path + "': " + oneLine(e.what()));
+    }
+    out.commit();
+}
+
+void writePng(const ImageRGB& image, const std::string& path, float exposure) {
+    checkWritable(image, path);
+    if (!(std::isfinite(exposure) && exposure > 0.0f))
+        throw InputError("cannot write '" + path + "': exposure must be finite and > 0, got " +
+                         std::to_string(exposure));
+    AtomicOutput out(path);
+
+    std::vector<unsigned char> bytes(image.pixels.size());
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        const float v = image.pixels[i] * exposure;
+        const float clamped = v > 0.0f ? std::min(v, 1.0f) : 0.0f;  // NaN fails v > 0: 0
+        bytes[i] = static_cast<unsigned char>(srgbEncode(clamped) * 255.0f + 0.5f);
+    }
+    if (!stbi_write_png(out.tempPath().c_str(), image.width, image.height, 3, bytes.data(),
+                        image.width * 3))
+        throw FileError("cannot write '" + path + "': PNG encoder failed");
+    out.commit();
+}
+
+void writeImage(const ImageRGB& image, const std::string& path, float exposure) {
+    const std::string ext = fileExtension(path);
+    if (ext == ".exr")
+        writeExr(image, path);
+    else if (ext == ".png")
+        writePng(image, path, exposure);
+    else
+        throw InputError("unsupported output format '" + ext + "' for '" + path +
+                         "': use .exr or .png");
+}
+
+ImageRGB readImage(const std::string& path) {
+    const std::string ext = fileExtension(path);
+    const bool exr = ext == ".exr";
+    if (!exr && ext != ".png" && ext != ".jpg" && ext != ".jpeg")
+        throw FileError("cannot read '" + path + "': unsupported image format '" + ext +
+                        "', use .exr, .png, .jpg or .jpeg");
+    // Checked here for a clear message: the decoders report a missing file vaguely.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw FileError("cannot read '" + path + "': " +
+                        (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
+    return exr ? readExr(path) : readStb(path);
+}
+
+}  // namespace lh

@@ -1,0 +1,34 @@
+// Emission-absorption integration along one ray through a RenderVolume.
+//
+// L = integral T(t) sigma(t) colour(t) dt, T(t) = exp(-integral sigma). The ray is split by the
+// finest-wins rule into pieces, each marched in its own level's index space. A segment of length
+// dt with midpoint values (sigma, emission = sigma * colour) contributes
+//   T * emission * (1 - exp(-sigma dt)) / sigma      (-> T * emission * dt as sigma -> 0)
+// and multiplies T by exp(-sigma dt): exact for piecewise-constant media, whatever the step.
+#pragma once
+
+#include "render/render_volume.h"
+
+namespace lh {
+
+struct MarchOptions {
+    double stepVoxels = 0.5;          // step length, in voxels of the level being marched
+    double minTransmittance = 1e-4;   // stop once T drops below this (0: never stop early)
+    bool skipEmptySpace = true;       // jump over empty 8^3 bricks with a DDA
+
+    // Fine fixed step, no skipping, no early stop: the answer other settings are measured against.
+    static MarchOptions reference() { return {0.05, 0.0, false}; }
+    // Throws InputError for non-positive or absurd steps, or a threshold outside [0, 1).
+    void validate() const;
+};
+
+struct RayResult {
+    double radiance[3] = {0.0, 0.0, 0.0};  // linear RGB
+    double transmittance = 1.0;            // what is left for the (black) space behind
+};
+
+// `dir` must be unit length; t is measured in scene units from `origin`.
+RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d& dir,
+                   const MarchOptions& options);
+
+}  // namespace lh

@@ -1,0 +1,276 @@
+#include "render/render_volume.h"
+
+#include "core/errors.h"
+
+#include <openvdb/tools/FindActiveValues.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lh {
+
+namespace {
+
+constexpr int kLatticeValues = RenderLevel::kLattice * RenderLevel::kLattice * RenderLevel::kLattice;
+
+// Defensive clamps: the loader already sanitises files; volumes built in memory may not be.
+float cleanSigma(float s) { return std::isfinite(s) && s > 0.f ? std::min(s, 1e15f) : (s > 0.f ? 1e15f : 0.f); }
+float cleanRadiance(float c) { return std::isfinite(c) && c > 0.f ? std::min(c, 1e15f) : (c > 0.f ? 1e15f : 0.f); }
+
+// Slab test of a ray q(t) = q0 + t qd against [lo, hi]; returns false when it misses.
+bool intersectBox(const Vec3d& q0, const Vec3d& qd, const Vec3d& lo, const Vec3d& hi,
+                  double& tNear, double& tFar) {
+    tNear = 0.0;
+    tFar = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (qd[a] == 0.0) {
+            if (q0[a] < lo[a] || q0[a] > hi[a]) return false;
+            continue;
+        }
+        double t0 = (lo[a] - q0[a]) / qd[a], t1 = (hi[a] - q0[a]) / qd[a];
+        if (t0 > t1) std::swap(t0, t1);
+        tNear = std::max(tNear, t0);
+        tFar = std::min(tFar, t1);
+    }
+    return tNear < tFar;
+}
+
+RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel>& coarser) {
+    RenderLevel out;
+    const auto& xf = level.transform();
+    const Vec3d origin = xf.indexToWorld(Vec3d(0.0));
+    Mat3d toWorld;
+    toWorld.setColumns(xf.indexToWorld(Vec3d(1, 0, 0)) - origin,
+                       xf.indexToWorld(Vec3d(0, 1, 0)) - origin,
+                       xf.indexToWorld(Vec3d(0, 0, 1)) - origin);
+    out.indexToWorld = toWorld;
+    out.worldToIndex = toWorld.inverse();
+    out.indexOffset = -(out.worldToIndex * origin);
+    out.voxelVolume = std::abs(toWorld.det());
+
+    const openvdb::CoordBBox domain = level.domain;
+    out.domainLo = domain.min().asVec3d() - Vec3d(0.5);
+    out.domainHi = domain.max().asVec3d() + Vec3d(0.5);
+    out.latticeOrigin = domain.min() - openvdb::Coord(1);
+    std::size_t cells = 1;
+    for (int a = 0; a < 3; ++a) {
+        // Trilinear lookups inside the domain use lattice points min-1 .. max+1.
+        const int64_t points = int64_t(domain.max()[a]) - domain.min()[a] + 2;
+        out.brickCount[a] = int((points + RenderLevel::kBrick - 1) / RenderLevel::kBrick);
+        cells *= std::size_t(out.brickCount[a]);
+        if (cells > kMaxBrickCells)
+            throw ResourceError("a volume level spans " + std::to_string(domain.dim().x()) + " x " +
+                                std::to_string(domain.dim().y()) + " x " +
+                                std::to_string(domain.dim().z()) +
+                                " voxels, more than the renderer's bound; crop or resample it");
+    }
+
+    // Halo value at an index point outside the domain: the next coarser level containing it,
+    // else the nearest edge voxel of this level.
+    auto haloValue = [&](const openvdb::Coord& c, auto& densityAcc, auto& colorAcc, float* v) {
+        const Vec3d world = toWorld * c.asVec3d() + origin;
+        for (int k = int(coarser.size()) - 1; k >= 0; --k) {
+            const RenderLevel& parent = coarser[k];
+            const Vec3d q = parent.toIndex(world);
+            if (q.x() >= parent.domainLo.x() && q.x() <= parent.domainHi.x() &&
+                q.y() >= parent.domainLo.y() && q.y() <= parent.domainHi.y() &&
+                q.z() >= parent.domainLo.z() && q.z() <= parent.domainHi.z()) {
+                RenderSample s = parent.sample(q);
+                v[0] = s.sigma;
+                std::copy(s.emission, s.emission + 3, v + 1);
+                return;
+            }
+        }
+        const openvdb::Coord clamped = openvdb::Coord::maxComponent(
+            domain.min(), openvdb::Coord::minComponent(domain.max(), c));
+        float sigma = 0.f;
+        if (!densityAcc.probeValue(clamped, sigma)) sigma = 0.f;
+        sigma = cleanSigma(sigma);
+        const openvdb::Vec3s color = colorAcc.getValue(clamped);
+        v[0] = sigma;
+        for (int i = 0; i < 3; ++i) v[1 + i] = sigma * cleanRadiance(color[i]);
+    };
+
+    const int bricks = int(cells);
+    std::vector<std::vector<float>> lattice(bricks);
+    tbb::parallel_for(tbb::blocked_range<int>(0, bricks), [&](const tbb::blocked_range<int>& range) {
+        auto densityAcc = level.density->getConstAccessor();  // accessors are per task
+        auto colorAcc = level.color->getConstAccessor();
+        for (int b = range.begin(); b != range.end(); ++b) {
+            const int bx = b % out.brickCount[0];
+            const int by = (b / out.brickCount[0]) % out.brickCount[1];
+            const int bz = b / (out.brickCount[0] * out.brickCount[1]);
+            const openvdb::Coord lo = out.latticeOrigin +
+                                      openvdb::Coord(bx * RenderLevel::kBrick, by * RenderLevel::kBrick,
+                                                     bz * RenderLevel::kBrick);
+            const openvdb::CoordBBox points(lo, lo + openvdb::Coord(RenderLevel::kBrick));
+            openvdb::CoordBBox inside = points;
+            inside.intersect(domain);
+            const bool touchesHalo = !domain.isInside(points);
+            if (!touchesHalo && !openvdb::tools::anyActiveValues(level.density->tree(), inside))
+                continue;  // empty interior brick: nothing to store
+            std::vector<float> values(std::size_t(kLatticeValues) * 4, 0.f);
+            bool anyDensity = false;
+            for (int z = 0; z < RenderLevel::kLattice; ++z)
+                for (int y = 0; y < RenderLevel::kLattice; ++y)
+                    for (int x = 0; x < RenderLevel::kLattice; ++x) {
+                        const openvdb::Coord c = lo + openvdb::Coord(x, y, z);
+                        float* v = &values[std::size_t((z * RenderLevel::kLattice + y) *
+                                                           RenderLevel::kLattice + x) * 4];
+                        // Lattice points beyond max+1 are never read by lookups in the domain.
+                        if (c.x() > domain.max().x() + 1 ||
+                            c.y() > domain.max().y() + 1 || c.z() > domain.max().z() + 1)
+                            continue;
+                        if (domain.isInside(c)) {
+                            float sigma = 0.f;
+                            if (!densityAcc.probeValue(c, sigma)) sigma = 0.f;  // inactive = empty
+                            sigma = cleanSigma(sigma);
+                            const openvdb::Vec3s color = colorAcc.getValue(c);
+                            v[0] = sigma;
+                            for (int i = 0; i < 3; ++i) v[1 + i] = sigma * cleanRadiance(color[i]);
+                        } else {
+                            haloValue(c, densityAcc, colorAcc, v);
+                        }
+                        anyDensity |= v[0] > 0.f;
+                    }
+            if (anyDensity) lattice[b] = std::move(values);
+        }
+    });
+
+    out.brickTable.assign(cells, -1);
+    std::size_t stored = 0;
+    for (int b = 0; b < bricks; ++b) stored += !lattice[b].empty();
+    if (stored > kMaxStoredBricks)
+        throw ResourceError("a volume level holds " + std::to_string(stored) +
+                            " non-empty bricks, more than the renderer's memory bound");
+    out.brickData.reserve(stored * kLatticeValues * 4);
+    int32_t next = 0;
+    for (int b = 0; b < bricks; ++b) {
+        if (lattice[b].empty()) continue;
+        out.brickTable[b] = next++;
+        out.brickData.insert(out.brickData.end(), lattice[b].begin(), lattice[b].end());
+    }
+    return out;
+}
+
+}  // namespace
+
+RenderSample RenderLevel::sample(const Vec3d& index) const {
+    // Continuous lattice coordinates relative to the lattice origin.
+    const double u[3] = {index.x() - latticeOrigin.x(), index.y() - latticeOrigin.y(),
+                         index.z() - latticeOrigin.z()};
+    int local[3], brick[3];
+    float w[3];
+    for (int a = 0; a < 3; ++a) {
+        const int maxCell = brickCount[a] * kBrick - 1;
+        int i = int(std::floor(u[a]));
+        i = std::clamp(i, 0, maxCell);
+        w[a] = float(std::clamp(u[a] - i, 0.0, 1.0));
+        brick[a] = i >> kBrickLog2;
+        local[a] = i & (kBrick - 1);
+    }
+    const int b = brickIndex(brick[0], brick[1], brick[2]);
+    RenderSample s{0.f, {0.f, 0.f, 0.f}};
+    if (b < 0) return s;
+    const float* base = &brickData[std::size_t(b) * kLatticeValues * 4];
+    const std::size_t strideY = kLattice * 4, strideZ = kLattice * kLattice * 4;
+    const float* p = base + local[2] * strideZ + local[1] * strideY + local[0] * 4;
+    float acc[4] = {0.f, 0.f, 0.f, 0.f};
+    for (int corner = 0; corner < 8; ++corner) {
+        const int dx = corner & 1, dy = (corner >> 1) & 1, dz = corner >> 2;
+        const float weight = (dx ? w[0] : 1.f - w[0]) * (dy ? w[1] : 1.f - w[1]) *
+                             (dz ? w[2] : 1.f - w[2]);
+        const float* v = p + dz * strideZ + dy * strideY + dx * 4;
+        for (int c = 0; c < 4; ++c) acc[c] += weight * v[c];
+    }
+    s.sigma = acc[0];
+    s.emission[0] = acc[1];
+    s.emission[1] = acc[2];
+    s.emission[2] = acc[3];
+    return s;
+}
+
+bool RenderLevel::brickOccupied(int bx, int by, int bz) const {
+    if (bx < 0 || by < 0 || bz < 0 || bx >= brickCount[0] || by >= brickCount[1] ||
+        bz >= brickCount[2])
+        return false;
+    return brickIndex(bx, by, bz) >= 0;
+}
+
+RenderVolume::RenderVolume(const LightingVolume& volume) {
+    volume.validate();
+    std::size_t stored = 0;
+    for (const VolumeLevel& level : volume.levels) {
+        levels.push_back(prepareLevel(level, levels));
+        stored += levels.back().brickData.size() / (kLatticeValues * 4);
+        if (stored > kMaxStoredBricks)
+            throw ResourceError("the volume holds more non-empty bricks than the renderer's "
+                                "memory bound (" + std::to_string(kMaxStoredBricks) + ")");
+    }
+}
+
+int RenderVolume::partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces) const {
+    int count = 0;
+    // Finest first: each level claims the parts of its interval no finer level has claimed.
+    for (int k = int(levels.size()) - 1; k >= 0; --k) {
+        const RenderLevel& level = levels[k];
+        double a, b;
+        if (!intersectBox(level.toIndex(origin), level.directionToIndex(dir), level.domainLo,
+                          level.domainHi, a, b))
+            continue;
+        // Subtract claimed intervals from [a, b]; claimed pieces are disjoint.
+        double free0[kMaxPieces + 1], free1[kMaxPieces + 1];
+        int nFree = 1;
+        free0[0] = a;
+        free1[0] = b;
+        for (int p = 0; p < count; ++p) {
+            int nNext = 0;
+            double next0[kMaxPieces + 1], next1[kMaxPieces + 1];
+            for (int f = 0; f < nFree; ++f) {
+                if (pieces[p].t1 <= free0[f] || pieces[p].t0 >= free1[f]) {
+                    next0[nNext] = free0[f], next1[nNext++] = free1[f];
+                    continue;
+                }
+                if (free0[f] < pieces[p].t0 && nNext < kMaxPieces)
+                    next0[nNext] = free0[f], next1[nNext++] = pieces[p].t0;
+                if (pieces[p].t1 < free1[f] && nNext < kMaxPieces)
+                    next0[nNext] = pieces[p].t1, next1[nNext++] = free1[f];
+            }
+            std::copy(next0, next0 + nNext, free0);
+            std::copy(next1, next1 + nNext, free1);
+            nFree = nNext;
+        }
+        for (int f = 0; f < nFree && count < kMaxPieces; ++f)
+            if (free1[f] > free0[f]) pieces[count++] = {free0[f], free1[f], k};
+    }
+    std::sort(pieces, pieces + count, [](const Piece& x, const Piece& y) { return x.t0 < y.t0; });
+    return count;
+}
+
+RenderSample RenderVolume::sampleWorld(const Vec3d& world) const {
+    for (int k = int(levels.size()) - 1; k >= 0; --k) {
+        const RenderLevel& level = levels[k];
+        const Vec3d q = level.toIndex(world);
+        if (q.x() >= level.domainLo.x() && q.x() <= level.domainHi.x() &&
+            q.y() >= level.domainLo.y() && q.y() <= level.domainHi.y() &&
+            q.z() >= level.domainLo.z() && q.z() <= level.domainHi.z())
+            return level.sample(q);
+    }
+    return {0.f, {0.f, 0.f, 0.f}};
+}
+
+std::size_t RenderVolume::storedBricks() const {
+    std::size_t n = 0;
+    for (const auto& l : levels) n += l.brickData.size() / (kLatticeValues * 4);
+    return n;
+}
+
+std::size_t RenderVolume::memoryBytes() const {
+    std::size_t n = 0;
+    for (const auto& l : levels)
+        n += l.brickData.size() * sizeof(float) + l.brickTable.size() * sizeof(int32_t);
+    return n;
+}
+
+}  // namespace lh

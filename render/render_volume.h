@@ -1,0 +1,90 @@
+// A lighting volume prepared for fast rendering.
+//
+// Each level becomes a sparse set of 8^3-voxel bricks in its own index space. A brick stores a
+// 9^3 lattice of (sigma, sigma*r, sigma*g, sigma*b) so that a trilinear lookup reads one
+// contiguous block: sigma and the premultiplied emission are interpolated (CONVENTIONS.md),
+// colour = emission / sigma. Bricks whose lattice has no density are not stored; the marcher
+// skips them without sampling.
+//
+// No seams: a level's lattice includes a one-voxel halo outside its domain, filled from the
+// next coarser level that contains the halo point (or, with none, by repeating the edge voxel).
+// Trilinear lookups just inside a finer level therefore blend towards the coarser level's field
+// instead of towards empty space, and the coarser level is never zeroed where finer levels are.
+// Inactive voxels count as empty space.
+#pragma once
+
+#include "vdb/lighting_volume.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace lh {
+
+struct Piece;
+
+// Medium sample in the render representation.
+struct RenderSample {
+    float sigma;        // extinction, per scene unit
+    float emission[3];  // sigma * colour
+};
+
+class RenderLevel {
+public:
+    static constexpr int kBrickLog2 = 3;
+    static constexpr int kBrick = 1 << kBrickLog2;  // voxels per brick side
+    static constexpr int kLattice = kBrick + 1;     // lattice points per brick side (apron)
+
+    // World -> continuous index coordinates (voxel centres at integers).
+    Vec3d toIndex(const Vec3d& world) const { return worldToIndex * world + indexOffset; }
+    Vec3d directionToIndex(const Vec3d& dir) const { return worldToIndex * dir; }
+
+    // Trilinear sample at continuous index coordinates. Valid inside [domainLo, domainHi].
+    RenderSample sample(const Vec3d& index) const;
+    // True if the brick cell at brick coordinates (bx, by, bz) holds density.
+    bool brickOccupied(int bx, int by, int bz) const;
+    int brickIndex(int bx, int by, int bz) const {
+        return brickTable[(std::size_t(bz) * brickCount[1] + by) * brickCount[0] + bx];
+    }
+
+    Mat3d worldToIndex;  // linear part of the world -> index map
+    Vec3d indexOffset;   // translation of the world -> index map
+    Mat3d indexToWorld;  // inverse linear part (for halo positions)
+    Vec3d domainLo, domainHi;  // continuous index bounds: outer faces of the domain's voxels
+    openvdb::Coord latticeOrigin;   // index coordinate of lattice point (0,0,0) of brick (0,0,0)
+    std::array<int, 3> brickCount{0, 0, 0};
+    std::vector<int32_t> brickTable;  // -1 = empty brick
+    std::vector<float> brickData;     // kLattice^3 x 4 floats per stored brick
+    double voxelVolume = 0;           // scene units^3
+};
+
+class RenderVolume {
+public:
+    // Prepares every level (coarsest first, as in the volume). Throws ResourceError if a level
+    // would need more than the documented memory bound.
+    explicit RenderVolume(const LightingVolume& volume);
+
+    std::vector<RenderLevel> levels;  // coarsest first
+
+    // Ray partition by the finest-wins rule: the ordered t-intervals of a ray (origin, unit
+    // direction) and the level that defines the medium on each. Returns the piece count.
+    static constexpr int kMaxPieces = 64;
+    int partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces) const;
+
+    // Field at a world point under finest-wins (for tests and reference checks).
+    RenderSample sampleWorld(const Vec3d& world) const;
+
+    std::size_t storedBricks() const;
+    std::size_t memoryBytes() const;
+};
+
+struct Piece {
+    double t0, t1;  // scene units along the ray
+    int level;
+};
+
+// Bound on bricks per level table (cells) and stored bricks overall.
+constexpr std::size_t kMaxBrickCells = std::size_t(1) << 26;
+constexpr std::size_t kMaxStoredBricks = std::size_t(1) << 18;  // ~3 GiB of lattice data
+
+}  // namespace lh

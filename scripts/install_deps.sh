@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Lighthouse-VDB builds and tests with (see
+# ../shared/BUILD_FACTS.md). Needs root, or sudo. Safe to run again.
+set -euo pipefail
+
+packages=(
+  g++ cmake ninja-build pkg-config
+  libopenvdb-dev libopenvdb-tools libnanovdb-dev libboost-iostreams-dev libblosc-dev
+  libtbb-dev libopenexr-dev libimath-dev libcli11-dev nlohmann-json3-dev libstb-dev
+  libgtest-dev libbenchmark-dev
+  libopenblas0-pthread            # fast BLAS for libtorch (the reference BLAS is ~50x slower)
+  python3-openvdb python3-numpy   # interop tests: files read and written by python3-openvdb
+)
+
+run() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
+
+export DEBIAN_FRONTEND=noninteractive
+echo "==> apt-get update"
+run apt-get update -q
+echo "==> installing ${#packages[@]} packages"
+run apt-get install -y -q --no-install-recommends "${packages[@]}"

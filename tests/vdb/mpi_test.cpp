@@ -1,0 +1,65 @@
+#include "vdb/mpi.h"
+
+#include "core/errors.h"
+#include "vdb/example_volume.h"
+#include "vdb/volume_io.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+namespace lh {
+namespace {
+
+TEST(Mpi, PlanesAreLinearInDisparityBackToFront) {
+    std::vector<double> depths = disparityLinearDepths(1.0, 8.0, 5);
+    ASSERT_EQ(depths.size(), 5u);
+    EXPECT_DOUBLE_EQ(depths.front(), 8.0);
+    EXPECT_DOUBLE_EQ(depths.back(), 1.0);
+    const double step = 1.0 / depths[1] - 1.0 / depths[0];
+    for (int d = 1; d < 5; ++d) EXPECT_NEAR(1.0 / depths[d] - 1.0 / depths[d - 1], step, 1e-12);
+    EXPECT_THROW(disparityLinearDepths(2.0, 1.0, 4), InputError);
+    EXPECT_THROW(disparityLinearDepths(0.0, 1.0, 4), InputError);
+}
+
+TEST(Mpi, PlaneTransformPutsPixelsAtTheirWorldPosition) {
+    PinholeCamera cam = exampleCameras().ref;
+    // A turned and moved camera: the transform must carry the pose, not just the intrinsics.
+    const double c = std::cos(0.3), s = std::sin(0.3);
+    cam.rotation = Mat3d(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c);
+    cam.position = Vec3d(0.5, -0.2, 1.0);
+    const double depth = 3.7;
+    auto xf = mpiPlaneTransform(cam, depth);
+    EXPECT_TRUE(xf->isLinear());
+    for (auto [u, v] : {std::pair{0, 0}, std::pair{17, 203}, std::pair{319, 239}}) {
+        const Vec3d world = xf->indexToWorld(openvdb::Coord(u, v, 0));
+        const Vec3d pixel = cam.cameraToPixel(cam.worldToCamera(world));
+        EXPECT_NEAR(pixel.x(), u + 0.5, 1e-9);
+        EXPECT_NEAR(pixel.y(), v + 0.5, 1e-9);
+        EXPECT_NEAR(pixel.z(), depth, 1e-9);
+    }
+}
+
+TEST(Mpi, SaveLoadRoundTripIsExact) {
+    PinholeCamera cam = exampleCameras().ref;
+    cam.width = 40;
+    cam.height = 30;
+    cam.cx = 20;
+    cam.cy = 15;
+    Mpi mpi = Mpi::create(cam, 0.8, 9.5, 6);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> uni(0.f, 1.f);
+    for (auto& plane : mpi.planes)
+        for (float& x : plane) x = uni(rng) < 0.3f ? 0.f : uni(rng);  // zeros stay sparse
+    const std::string path = (std::filesystem::temp_directory_path() / "lh_mpi.vdb").string();
+    saveVdb(path, nullptr, &mpi);
+    Mpi back = loadMpi(path);
+    EXPECT_EQ(back.planeDepths, mpi.planeDepths);
+    EXPECT_EQ(back.planes, mpi.planes);
+    EXPECT_EQ(back.camera.fx, mpi.camera.fx);
+    EXPECT_EQ(back.camera.width, 40);
+}
+
+}  // namespace
+}  // namespace lh

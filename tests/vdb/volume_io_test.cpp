@@ -1,0 +1,204 @@
+#include "vdb/volume_io.h"
+
+#include "core/errors.h"
+#include "tests/support/test_volumes.h"
+#include "vdb/example_volume.h"
+
+#include <openvdb/io/File.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace lh {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string tempPath(const std::string& name) {
+    fs::path dir = fs::temp_directory_path() / "lh_volume_io";
+    fs::create_directories(dir);
+    return (dir / name).string();
+}
+
+void writeGrids(const std::string& path, openvdb::GridPtrVec grids) {
+    openvdb::initialize();
+    openvdb::io::File(path).write(grids);
+}
+
+// Every stored value (voxels and tiles) and its active state agree.
+template <typename GridT>
+void expectSameGrid(const GridT& a, const GridT& b) {
+    EXPECT_EQ(a.getName(), b.getName());
+    EXPECT_EQ(a.transform(), b.transform());
+    EXPECT_EQ(a.activeVoxelCount(), b.activeVoxelCount());
+    EXPECT_EQ(a.background(), b.background());
+    auto accB = b.getConstAccessor();
+    std::size_t checked = 0;
+    for (auto it = a.cbeginValueOn(); it; ++it, ++checked) {
+        EXPECT_EQ(accB.getValue(it.getCoord()), *it);
+        EXPECT_TRUE(accB.isValueOn(it.getCoord()));
+    }
+    EXPECT_GT(checked, 0u);
+}
+
+void expectFileError(const std::string& path, const std::string& fragment) {
+    try {
+        loadVolume(path);
+        FAIL() << "no error loading " << path;
+    } catch (const FileError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find(path), std::string::npos) << msg;
+        EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+    }
+}
+
+TEST(VolumeIo, RoundTripIsBitExact) {
+    LightingVolume v = makeExampleVolume(3, 24);
+    const std::string path = tempPath("roundtrip.vdb");
+    saveVolume(path, v);
+    LightingVolume back = loadVolume(path);
+    ASSERT_EQ(back.levels.size(), v.levels.size());
+    for (std::size_t k = 0; k < v.levels.size(); ++k) {
+        expectSameGrid(*v.levels[k].density, *back.levels[k].density);
+        expectSameGrid(*v.levels[k].color, *back.levels[k].color);
+        EXPECT_EQ(back.levels[k].domain, v.levels[k].domain);
+        EXPECT_EQ(back.levels[k].color->getVectorType(), openvdb::VEC_INVARIANT);
+    }
+    ASSERT_TRUE(back.layout.has_value());
+    EXPECT_EQ(*back.layout, *v.layout);
+    ASSERT_TRUE(back.refCamera.has_value());
+    EXPECT_EQ(back.refCamera->fx, v.refCamera->fx);
+}
+
+TEST(VolumeIo, HalfPrecisionIsSmallerAndClose) {
+    LightingVolume v = makeExampleVolume(2, 24);
+    const std::string full = tempPath("full.vdb"), half = tempPath("half.vdb");
+    saveVolume(full, v);
+    saveVolume(half, v, VolumeSaveOptions{true});
+    EXPECT_LT(fs::file_size(half), fs::file_size(full));
+    LightingVolume back = loadVolume(half);
+    auto acc = back.levels[1].density->getConstAccessor();
+    for (auto it = v.levels[1].density->cbeginValueOn(); it; ++it)
+        EXPECT_NEAR(acc.getValue(it.getCoord()), *it, 1e-3 * *it);
+}
+
+TEST(VolumeIo, NotAVdbFileIsAClearError) {
+    const std::string path = tempPath("garbage.vdb");
+    std::ofstream(path) << "this is not a VDB file at all, just text\n";
+    expectFileError(path, "not a readable VDB");
+    expectFileError(tempPath("missing.vdb"), "does not exist");
+}
+
+TEST(VolumeIo, MissingColorGridNamesTheGrid) {
+    const std::string path = tempPath("no_color.vdb");
+    auto d = openvdb::FloatGrid::create(0.f);
+    d->setName("density");
+    d->tree().setValue(openvdb::Coord(0), 1.f);
+    writeGrids(path, {d});
+    expectFileError(path, "color");
+}
+
+TEST(VolumeIo, WrongGridTypeNamesGridAndType) {
+    const std::string path = tempPath("wrong_type.vdb");
+    auto d = openvdb::Vec3SGrid::create();
+    d->setName("density_L0");
+    auto c = openvdb::Vec3SGrid::create();
+    c->setName("color_L0");
+    writeGrids(path, {d, c});
+    expectFileError(path, "density_L0");
+    expectFileError(path, "FloatGrid");
+
+    const std::string path2 = tempPath("wrong_color_type.vdb");
+    auto d2 = openvdb::FloatGrid::create();
+    d2->setName("density");
+    d2->tree().setValue(openvdb::Coord(0), 1.f);
+    auto c2 = openvdb::FloatGrid::create();
+    c2->setName("color");
+    writeGrids(path2, {d2, c2});
+    expectFileError(path2, "Vec3SGrid");
+}
+
+TEST(VolumeIo, NonAffineTransformIsRefused) {
+    const std::string path = tempPath("frustum.vdb");
+    openvdb::BBoxd box(Vec3d(0), Vec3d(10));
+    auto frustum = openvdb::math::Transform::createFrustumTransform(box, 0.5, 2.0, 0.1);
+    auto d = openvdb::FloatGrid::create(0.f);
+    d->setName("density");
+    d->tree().setValue(openvdb::Coord(1), 1.f);
+    d->setTransform(frustum);
+    auto c = openvdb::Vec3SGrid::create();
+    c->setName("color");
+    c->setTransform(frustum->copy());
+    writeGrids(path, {d, c});
+    expectFileError(path, "non-affine");
+}
+
+TEST(VolumeIo, ForeignBlenderStyleFileLoadsAsOneLevel) {
+    const std::string path = tempPath("blender_style.vdb");
+    VolumeLevel level = test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20),
+                                        test::boxField(Vec3d(0.2), Vec3d(0.6), {5.f, openvdb::Vec3s(1, 0, 0)}));
+    level.density->setName("density");
+    level.color->setName("color");
+    writeGrids(path, {level.density, level.color});
+    LightingVolume v = loadVolume(path);
+    ASSERT_EQ(v.levels.size(), 1u);
+    EXPECT_FALSE(v.layout.has_value());
+    // Without stored domain metadata the level covers its active voxels.
+    EXPECT_EQ(v.levels[0].domain, level.density->evalActiveVoxelBoundingBox());
+}
+
+TEST(VolumeIo, NonFiniteValuesAreSanitisedWithWarningsOrRejected) {
+    const std::string path = tempPath("nan.vdb");
+    LightingVolume v = LightingVolume::fromLayout(VolumeLayout{4.0, 1, 8});
+    v.fillLevel(0, [](const Vec3d&) { return MediumSample{1.f, openvdb::Vec3s(0.5f)}; });
+    auto acc = v.levels[0].density->getAccessor();
+    acc.setValue(openvdb::Coord(1, 1, 1), std::numeric_limits<float>::quiet_NaN());
+    acc.setValue(openvdb::Coord(2, 2, 2), std::numeric_limits<float>::infinity());
+    acc.setValue(openvdb::Coord(3, 3, 3), -2.f);
+    v.levels[0].color->getAccessor().setValue(openvdb::Coord(4, 4, 4),
+                                              openvdb::Vec3s(std::nanf(""), 1.f, -1.f));
+    saveVolume(path, v);
+
+    std::vector<std::string> warnings;
+    LightingVolume back = loadVolume(path, &warnings);
+    ASSERT_EQ(warnings.size(), 2u);
+    EXPECT_NE(warnings[0].find("density_L0"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("1 NaN, 1 +Inf, 1 negative"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[1].find("color_L0"), std::string::npos) << warnings[1];
+    auto d = back.levels[0].density->getConstAccessor();
+    EXPECT_EQ(d.getValue(openvdb::Coord(1, 1, 1)), 0.f);
+    EXPECT_EQ(d.getValue(openvdb::Coord(2, 2, 2)), kOpaqueDensity);
+    EXPECT_EQ(d.getValue(openvdb::Coord(3, 3, 3)), 0.f);
+    EXPECT_EQ(back.levels[0].color->getConstAccessor().getValue(openvdb::Coord(4, 4, 4)),
+              openvdb::Vec3s(0.f, 1.f, 0.f));
+
+    try {
+        loadVolume(path, nullptr, VolumeLoadOptions{NonFinitePolicy::Reject});
+        FAIL() << "strict load accepted NaN";
+    } catch (const FileError& e) {
+        EXPECT_NE(std::string(e.what()).find("density_L0"), std::string::npos) << e.what();
+    }
+}
+
+TEST(VolumeIo, FailedSaveLeavesNoFile) {
+    LightingVolume v = makeExampleVolume(1, 8);
+    EXPECT_THROW(saveVolume("/nonexistent_lh_dir/v.vdb", v), FileError);
+    EXPECT_FALSE(fs::exists("/nonexistent_lh_dir/v.vdb"));
+}
+
+TEST(VolumeIo, VolumeAndMpiShareOneFile) {
+    LightingVolume v = makeExampleVolume(2, 8);
+    Mpi mpi = Mpi::create(exampleCameras().ref, 1.0, 7.0, 4);
+    mpi.pixel(2, 5, 6)[3] = 0.5f;
+    const std::string path = tempPath("both.vdb");
+    saveVdb(path, &v, &mpi);
+    EXPECT_EQ(loadVolume(path).levels.size(), 2u);  // MPI grids are not mistaken for levels
+    EXPECT_EQ(loadMpi(path).pixel(2, 5, 6)[3], 0.5f);
+    saveVolume(path, v);
+    EXPECT_THROW(loadMpi(path), FileError);
+}
+
+}  // namespace
+}  // namespace lh

@@ -1,0 +1,70 @@
+// The lighting volume: an emission-absorption medium stored as nested OpenVDB grids.
+// Each level is a FloatGrid `density` (extinction sigma, per scene unit) and a Vec3SGrid
+// `color` (linear RGB radiance) sharing one affine index->world transform. Which level is
+// finer is decided by voxel size, never by position in a list or file.
+#pragma once
+
+#include "core/camera.h"
+#include "vdb/volume_layout.h"
+
+#include <openvdb/openvdb.h>
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace lh {
+
+// Medium at one point.
+struct MediumSample {
+    float sigma = 0.f;                   // extinction, per scene unit
+    openvdb::Vec3s color{0.f, 0.f, 0.f};  // linear radiance
+};
+
+struct VolumeLevel {
+    openvdb::FloatGrid::Ptr density;
+    openvdb::Vec3SGrid::Ptr color;
+    // Index-space voxels (inclusive) the level covers: where it is the finest level, it defines
+    // the medium, active or not. For our files the layout box; for foreign files the active
+    // voxel bounding box.
+    openvdb::CoordBBox domain;
+
+    const openvdb::math::Transform& transform() const { return density->transform(); }
+    double voxelVolume() const { return transform().voxelVolume(); }  // scene units^3
+    // Corners of the domain's outer voxel faces in world space, axis-aligned bounds.
+    WorldBox worldBounds() const;
+    // True if the world point lies inside the domain's outer voxel faces.
+    bool containsWorld(const Vec3d& p) const;
+};
+
+class LightingVolume {
+public:
+    std::vector<VolumeLevel> levels;  // coarsest first; finest last
+    std::optional<VolumeLayout> layout;      // set when the volume follows the nested layout
+    std::optional<PinholeCamera> refCamera;  // set when known (predicted volumes)
+
+    // Empty levels of a layout with transforms and domains set.
+    static LightingVolume fromLayout(const VolumeLayout& layout);
+
+    // Fills level `k` by evaluating `field` at every voxel centre of its domain (in parallel).
+    // Voxels with sigma == 0 stay inactive, so empty space costs nothing.
+    void fillLevel(int k, const std::function<MediumSample(const Vec3d& world)>& field);
+
+    // Orders levels coarsest first (by voxel volume) and names the grids density_L<k> /
+    // color_L<k> with `level` metadata, the on-disk convention. Throws InputError if two
+    // levels have the same voxel volume.
+    void normaliseLevels();
+
+    // Throws InputError if a level is malformed (missing grid, non-linear transform, density
+    // and colour transforms differ, empty domain).
+    void validate() const;
+
+    openvdb::Index64 activeVoxelCount() const;
+    openvdb::Index64 memoryBytes() const;
+};
+
+// Grid names of level k on disk.
+std::string densityGridName(int level);
+std::string colorGridName(int level);
+
+}  // namespace lh

@@ -1,0 +1,56 @@
+// Reading and writing lighting volumes and MPIs as .vdb files.
+//
+// File metadata: `lighthouse_format_version` (int), `lighthouse_layout` (JSON, when the volume
+// follows the nested layout), `lighthouse_ref_camera` (JSON camera, when known). Grid metadata:
+// `level` (int) and `lighthouse_domain_min/max` (the index box the level covers).
+//
+// Loading is grid-aware: every FloatGrid named `density` or `density<suffix>` paired with a
+// Vec3SGrid `color<suffix>` (or `Cd<suffix>`) is one level, whatever its transform; which level
+// is finer is decided by voxel size. A Blender-style file with just `density` and `color`
+// loads as a one-level volume.
+//
+// Non-finite values (policy, applied on load and reported as warnings): density NaN -> 0,
+// +Inf -> kOpaqueDensity, negative -> 0; colour NaN -> 0, +Inf -> kMaxRadiance, negative
+// components -> 0. With NonFinitePolicy::Reject the load fails instead, naming file and grid.
+#pragma once
+
+#include "vdb/lighting_volume.h"
+#include "vdb/mpi.h"
+
+#include <string>
+#include <vector>
+
+namespace lh {
+
+constexpr int kVolumeFormatVersion = 1;
+constexpr float kOpaqueDensity = 1e15f;  // per scene unit: opaque over any step above 1e-13
+constexpr float kMaxRadiance = 1e15f;    // linear radiance ceiling for sanitised +Inf
+
+enum class NonFinitePolicy { Sanitise, Reject };
+
+struct VolumeLoadOptions {
+    NonFinitePolicy nonFinite = NonFinitePolicy::Sanitise;
+};
+
+struct VolumeSaveOptions {
+    bool halfPrecision = false;  // store float values as 16-bit halves on disk
+};
+
+// Writes the volume (and optionally an MPI) to `path` atomically, Blosc-compressed.
+void saveVdb(const std::string& path, const LightingVolume* volume, const Mpi* mpi,
+             const VolumeSaveOptions& options = {});
+inline void saveVolume(const std::string& path, const LightingVolume& volume,
+                       const VolumeSaveOptions& options = {}) {
+    saveVdb(path, &volume, nullptr, options);
+}
+
+// Loads the lighting volume of a .vdb file. Throws FileError naming the file (and grid) if
+// the file is not a VDB, has no density/colour pair, has wrong grid types or non-affine
+// transforms, or (with Reject) holds NaN/Inf. `warnings`, if given, receives what was sanitised.
+LightingVolume loadVolume(const std::string& path, std::vector<std::string>* warnings = nullptr,
+                          const VolumeLoadOptions& options = {});
+
+// Loads the MPI stored in a file written by saveVdb.
+Mpi loadMpi(const std::string& path);
+
+}  // namespace lh

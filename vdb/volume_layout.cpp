@@ -1,0 +1,79 @@
+#include "vdb/volume_layout.h"
+
+#include "core/errors.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lh {
+
+namespace {
+// Dense voxels over all levels above which we refuse a layout: 4 floats per voxel at 2^30
+// voxels is 16 GiB, most of this machine's memory.
+constexpr double kMaxLayoutVoxels = 1073741824.0;
+}  // namespace
+
+VolumeLayout VolumeLayout::fromFarDepth(double far, int levels, int resolution) {
+    if (!(std::isfinite(far) && far > 0))
+        throw InputError("far depth must be positive and finite, got " + std::to_string(far));
+    VolumeLayout layout;
+    layout.s0 = 2.0 * std::min(far, 20.0);
+    layout.levels = levels;
+    layout.resolution = resolution;
+    layout.validate();
+    return layout;
+}
+
+double VolumeLayout::side(int level) const { return s0 / std::ldexp(1.0, level); }
+
+double VolumeLayout::voxelSize(int level) const { return side(level) / resolution; }
+
+WorldBox VolumeLayout::box(int level) const {
+    const double s = side(level);
+    if (level == 0) return {Vec3d(-s / 2, -s / 2, -s / 2), Vec3d(s / 2, s / 2, s / 2)};
+    return {Vec3d(-s / 2, -s / 2, 0.0), Vec3d(s / 2, s / 2, s)};
+}
+
+openvdb::math::Transform::Ptr VolumeLayout::transform(int level) const {
+    const double v = voxelSize(level);
+    auto xform = openvdb::math::Transform::createLinearTransform(v);
+    xform->postTranslate(box(level).min + Vec3d(v / 2));
+    return xform;
+}
+
+void VolumeLayout::validate() const {
+    if (!(std::isfinite(s0) && s0 > 0))
+        throw InputError("layout: s0 must be positive and finite, got " + std::to_string(s0));
+    if (levels < 1 || levels > 16)
+        throw InputError("layout: level count must be in [1, 16], got " + std::to_string(levels));
+    if (resolution < 2 || resolution > 4096)
+        throw InputError("layout: resolution must be in [2, 4096], got " +
+                         std::to_string(resolution));
+    const double voxels = double(levels) * std::pow(double(resolution), 3);
+    if (voxels > kMaxLayoutVoxels)
+        throw ResourceError("layout: " + std::to_string(levels) + " x " +
+                            std::to_string(resolution) + "^3 voxels would exhaust memory (limit " +
+                            std::to_string(int64_t(kMaxLayoutVoxels)) + " voxels)");
+}
+
+std::string VolumeLayout::toJson() const {
+    return nlohmann::json{{"s0", s0}, {"levels", levels}, {"resolution", resolution}}.dump();
+}
+
+VolumeLayout VolumeLayout::fromJson(const std::string& text, const std::string& sourceName) {
+    try {
+        auto j = nlohmann::json::parse(text);
+        VolumeLayout layout;
+        layout.s0 = j.at("s0").get<double>();
+        layout.levels = j.at("levels").get<int>();
+        layout.resolution = j.at("resolution").get<int>();
+        layout.validate();
+        return layout;
+    } catch (const nlohmann::json::exception&) {
+        throw FileError(sourceName + ": layout metadata is not valid");
+    }
+}
+
+}  // namespace lh
