@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sstream>
+#include <cstdlib>
 
 namespace lh::cli {
 
@@ -15,10 +15,16 @@ Vec3d parsePoint(const std::string& text, const std::string& what) {
     std::string s = text;
     for (char& c : s)
         if (c == ',') c = ' ';
-    std::istringstream in(s);
+    // strtod, unlike istream, parses "nan" and "inf", so they get the finiteness message.
     double v[3];
-    std::string rest;
-    if (!(in >> v[0] >> v[1] >> v[2]) || (in >> rest))
+    const char* p = s.c_str();
+    for (double& x : v) {
+        char* end = nullptr;
+        x = std::strtod(p, &end);
+        if (end == p) throw InputError(what + ": expected three numbers X,Y,Z, got '" + text + "'");
+        p = end;
+    }
+    if (std::string(p).find_first_not_of(" \t\r") != std::string::npos)
         throw InputError(what + ": expected three numbers X,Y,Z, got '" + text + "'");
     for (double x : v)
         if (!std::isfinite(x)) throw InputError(what + ": coordinates must be finite, got '" + text + "'");

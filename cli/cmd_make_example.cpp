@@ -8,6 +8,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 namespace lh::cli {
 
@@ -23,18 +24,21 @@ struct MakeExampleOptions {
 
 void makeExample(const MakeExampleOptions& o) {
     VolumeLayout::fromFarDepth(7.0, o.levels, o.resolution);  // validates before any work
+    // The cameras file is written to its temporary first, so that a bad cameras path fails
+    // before the volume exists; both appear only if both succeed.
+    std::unique_ptr<AtomicOutput> cameras;
+    if (!o.cameras.empty()) {
+        cameras = std::make_unique<AtomicOutput>(o.cameras);
+        std::ofstream f(cameras->tempPath());
+        f << camerasToJson(exampleCameras()) << "\n";
+        if (!f) throw FileError("cannot write '" + o.cameras + "'");
+    }
     const LightingVolume volume = makeExampleVolume(o.levels, o.resolution);
     saveVolume(o.output, volume, VolumeSaveOptions{o.half});
     std::cerr << "example room: " << volume.levels.size() << " levels of " << o.resolution
               << "^3, " << volume.activeVoxelCount() << " active voxels -> " << o.output << "\n";
-    if (!o.cameras.empty()) {
-        AtomicOutput out(o.cameras);
-        {
-            std::ofstream f(out.tempPath());
-            f << camerasToJson(exampleCameras()) << "\n";
-            if (!f) throw FileError("cannot write '" + o.cameras + "'");
-        }
-        out.commit();
+    if (cameras) {
+        cameras->commit();
         std::cerr << "cameras -> " << o.cameras << "\n";
     }
 }

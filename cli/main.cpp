@@ -8,6 +8,8 @@
 
 #include <iostream>
 #include <memory>
+#include <string>
+#include <utility>
 
 int main(int argc, char** argv) {
     CLI::App app{"lighthouse: predict, store and render spatially-coherent lighting volumes"};
@@ -28,6 +30,15 @@ int main(int argc, char** argv) {
                 tbb::global_control::max_allowed_parallelism, threads);
     });
     try {
+        // CLI11 reports a mistyped command only as "a subcommand is required": name it.
+        const std::string first = argc > 1 ? argv[1] : "";
+        const auto known = [&](const CLI::App* sub) { return sub->get_name() == first; };
+        if (!first.empty() && first[0] != '-' &&
+            std::as_const(app).get_subcommands(known).empty()) {
+            std::cerr << "lighthouse: error: unknown command '" << argv[1]
+                      << "'; run 'lighthouse --help' for the list\n";
+            return 1;
+        }
         openvdb::initialize();
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -9,6 +9,12 @@
 
 namespace lh {
 
+std::string gridKind(const openvdb::GridBase& grid) {
+    if (grid.isType<openvdb::FloatGrid>()) return "a FloatGrid";
+    if (grid.isType<openvdb::Vec3SGrid>()) return "a Vec3SGrid";
+    return "a " + grid.valueType() + " grid";
+}
+
 std::string densityGridName(int level) { return "density_L" + std::to_string(level); }
 std::string colorGridName(int level) { return "color_L" + std::to_string(level); }
 
@@ -46,6 +52,8 @@ LightingVolume LightingVolume::fromLayout(const VolumeLayout& layout) {
         level.density->setTransform(layout.transform(k));
         level.color->setTransform(layout.transform(k));
         level.domain = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(r - 1));
+        level.density->setName(densityGridName(k));
+        level.color->setName(colorGridName(k));
         volume.levels.push_back(level);
     }
     volume.normaliseLevels();
@@ -89,8 +97,6 @@ void LightingVolume::normaliseLevels() {
             throw InputError("levels " + std::to_string(k - 1) + " and " + std::to_string(k) +
                              " have the same voxel size: which one is finer is undefined");
         const int level = int(k);
-        levels[k].density->setName(densityGridName(level));
-        levels[k].color->setName(colorGridName(level));
         levels[k].density->setGridClass(openvdb::GRID_FOG_VOLUME);
         levels[k].color->setVectorType(openvdb::VEC_INVARIANT);  // a colour does not transform
         levels[k].density->insertMeta("level", openvdb::Int32Metadata(level));

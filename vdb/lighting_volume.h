@@ -50,9 +50,10 @@ public:
     // Voxels with sigma == 0 stay inactive, so empty space costs nothing.
     void fillLevel(int k, const std::function<MediumSample(const Vec3d& world)>& field);
 
-    // Orders levels coarsest first (by voxel volume) and names the grids density_L<k> /
-    // color_L<k> with `level` metadata, the on-disk convention. Throws InputError if two
-    // levels have the same voxel volume.
+    // Orders levels coarsest first (by voxel volume) and sets `level` metadata, the fog-volume
+    // class and the colour vector type. Grids keep their names (a foreign file's `density`
+    // stays `density`); saveVdb writes the density_L<k> / color_L<k> convention. Throws
+    // InputError if two levels have the same voxel volume.
     void normaliseLevels();
 
     // Throws InputError if a level is malformed (missing grid, non-linear transform, density
@@ -62,6 +63,9 @@ public:
     openvdb::Index64 activeVoxelCount() const;
     openvdb::Index64 memoryBytes() const;
 };
+
+// "a FloatGrid", "a Vec3SGrid", or "a <value type> grid" for messages.
+std::string gridKind(const openvdb::GridBase& grid);
 
 // Grid names of level k on disk.
 std::string densityGridName(int level);

@@ -1,6 +1,7 @@
 #include "vdb/mpi.h"
 
 #include "core/errors.h"
+#include "vdb/lighting_volume.h"
 
 #include <cmath>
 #include <map>
@@ -113,12 +114,12 @@ Mpi mpiFromGrids(const openvdb::GridPtrVec& grids, const PinholeCamera& camera,
         if (isRgb) {
             entry.first = openvdb::gridPtrCast<openvdb::Vec3SGrid>(g);
             if (!entry.first)
-                throw FileError(sourceName + ": grid '" + name + "' is a " + g->type() +
+                throw FileError(sourceName + ": grid '" + name + "' is " + gridKind(*g) +
                                 ", expected a Vec3SGrid");
         } else {
             entry.second = openvdb::gridPtrCast<openvdb::FloatGrid>(g);
             if (!entry.second)
-                throw FileError(sourceName + ": grid '" + name + "' is a " + g->type() +
+                throw FileError(sourceName + ": grid '" + name + "' is " + gridKind(*g) +
                                 ", expected a FloatGrid");
         }
     }

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "vdb/safe_read.h"
 
 #include <openvdb/io/File.h>
 
@@ -28,6 +29,7 @@ VdbContents readVdb(const std::string& path) {
     initialiseOpenVdb();
     if (!std::filesystem::exists(path)) throw FileError("'" + path + "' does not exist");
     if (std::filesystem::is_directory(path)) throw FileError("'" + path + "' is a directory, not a .vdb file");
+    probeVdbReadable(path);
     try {
         openvdb::io::File file(path);
         file.open(/*delayLoad=*/false);
@@ -172,7 +174,7 @@ LightingVolume loadVolume(const std::string& path, std::vector<std::string>* war
         if (!densitySuffix(name, suffix)) continue;
         auto density = openvdb::gridPtrCast<openvdb::FloatGrid>(grid);
         if (!density)
-            throw FileError("'" + path + "': grid '" + name + "' is a " + grid->type() +
+            throw FileError("'" + path + "': grid '" + name + "' is " + gridKind(*grid) +
                             ", expected a FloatGrid (extinction density)");
         openvdb::GridBase::Ptr colorBase;
         for (const char* stem : {"color", "Cd", "colour"})
@@ -182,8 +184,8 @@ LightingVolume loadVolume(const std::string& path, std::vector<std::string>* war
                             "' has no matching Vec3SGrid 'color" + suffix + "'");
         auto color = openvdb::gridPtrCast<openvdb::Vec3SGrid>(colorBase);
         if (!color)
-            throw FileError("'" + path + "': grid '" + colorBase->getName() + "' is a " +
-                            colorBase->type() + ", expected a Vec3SGrid (linear RGB radiance)");
+            throw FileError("'" + path + "': grid '" + colorBase->getName() + "' is " +
+                            gridKind(*colorBase) + ", expected a Vec3SGrid (linear RGB radiance)");
         for (const openvdb::GridBase* g : {(const openvdb::GridBase*)density.get(),
                                            (const openvdb::GridBase*)color.get()})
             if (!g->transform().isLinear())

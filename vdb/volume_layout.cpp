@@ -10,9 +10,11 @@
 namespace lh {
 
 namespace {
-// Dense voxels over all levels above which we refuse a layout: 4 floats per voxel at 2^30
-// voxels is 16 GiB, most of this machine's memory.
-constexpr double kMaxLayoutVoxels = 1073741824.0;
+// Voxels over all levels above which we refuse a layout: a dense volume stores 4 floats per
+// voxel, so 2^28 voxels is 4 GiB. Filling one level also holds it densely (16 bytes a voxel),
+// hence the per-level resolution cap: 512^3 is 2 GiB.
+constexpr double kMaxLayoutVoxels = 268435456.0;
+constexpr int kMaxResolution = 512;
 }  // namespace
 
 VolumeLayout VolumeLayout::fromFarDepth(double far, int levels, int resolution) {
@@ -48,9 +50,12 @@ void VolumeLayout::validate() const {
         throw InputError("layout: s0 must be positive and finite, got " + std::to_string(s0));
     if (levels < 1 || levels > 16)
         throw InputError("layout: level count must be in [1, 16], got " + std::to_string(levels));
-    if (resolution < 2 || resolution > 4096)
-        throw InputError("layout: resolution must be in [2, 4096], got " +
-                         std::to_string(resolution));
+    if (resolution < 2)
+        throw InputError("layout: resolution must be at least 2, got " + std::to_string(resolution));
+    if (resolution > kMaxResolution)
+        throw ResourceError("layout: resolution " + std::to_string(resolution) +
+                            " would exhaust memory (at most " + std::to_string(kMaxResolution) +
+                            " voxels per side)");
     const double voxels = double(levels) * std::pow(double(resolution), 3);
     if (voxels > kMaxLayoutVoxels)
         throw ResourceError("layout: " + std::to_string(levels) + " x " +

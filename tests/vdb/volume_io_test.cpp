@@ -91,6 +91,35 @@ TEST(VolumeIo, NotAVdbFileIsAClearError) {
     expectFileError(tempPath("missing.vdb"), "does not exist");
 }
 
+// Truncations and flipped bytes anywhere in a valid file: each load either works or throws
+// FileError; OpenVDB's own aborts and huge allocations stay inside the probe's child process.
+TEST(VolumeIo, CorruptedFilesFailCleanly) {
+    const std::string good = tempPath("good.vdb");
+    saveVolume(good, makeExampleVolume(2, 16));
+    std::string bytes;
+    {
+        std::ifstream in(good, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    ASSERT_GT(bytes.size(), 1000u);
+    const std::string bad = tempPath("bad.vdb");
+    int failures = 0;
+    for (int i = 1; i <= 40; ++i) {
+        std::string corrupt = bytes;
+        const std::size_t at = bytes.size() * i / 41;
+        if (i % 2) corrupt.resize(at);          // truncated
+        else corrupt[at] = char(corrupt[at] ^ 0x5a);  // one flipped byte
+        std::ofstream(bad, std::ios::binary) << corrupt;
+        try {
+            loadVolume(bad);
+        } catch (const FileError& e) {
+            ++failures;
+            EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_GE(failures, 20);  // at least every truncation is detected
+}
+
 TEST(VolumeIo, MissingColorGridNamesTheGrid) {
     const std::string path = tempPath("no_color.vdb");
     auto d = openvdb::FloatGrid::create(0.f);

@@ -60,7 +60,8 @@ TEST(VolumeLayout, ImpossibleLayoutsAreRefused) {
     EXPECT_THROW((VolumeLayout{-1.0, 5, 64}.validate()), InputError);
     EXPECT_THROW((VolumeLayout{10.0, 0, 64}.validate()), InputError);
     EXPECT_THROW((VolumeLayout{10.0, 5, 1}.validate()), InputError);
-    EXPECT_THROW((VolumeLayout{10.0, 16, 4096}.validate()), ResourceError);
+    EXPECT_THROW((VolumeLayout{10.0, 1, 1024}.validate()), ResourceError);
+    EXPECT_THROW((VolumeLayout{10.0, 16, 512}.validate()), ResourceError);
     EXPECT_THROW(VolumeLayout::fromFarDepth(std::nan("")), InputError);
     EXPECT_NO_THROW((VolumeLayout{10.0, 5, 64}.validate()));
 }

@@ -1,0 +1,86 @@
+#include "vdb/safe_read.h"
+
+#include "core/errors.h"
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+
+#include <algorithm>
+#include <csignal>
+#include <filesystem>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace lh {
+
+namespace {
+
+// Child exit codes.
+constexpr int kReadOk = 0;
+constexpr int kReadFailed = 3;
+constexpr int kOutOfMemory = 4;
+
+std::size_t halfPhysicalMemory() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || pageSize <= 0) return std::size_t(8) << 30;
+    return std::size_t(pages) * std::size_t(pageSize) / 2;
+}
+
+[[noreturn]] void childRead(const std::string& path, std::size_t cap) {
+    // Quiet: the parent reports. A crash here only ends the child.
+    const int devNull = ::open("/dev/null", O_WRONLY);
+    if (devNull >= 0) ::dup2(devNull, STDERR_FILENO);
+    rlimit limit{cap, cap};
+    ::setrlimit(RLIMIT_AS, &limit);
+    int code = kReadOk;
+    try {
+        openvdb::initialize();
+        openvdb::io::File file(path);
+        file.open(false);
+        file.getGrids();
+        file.close();
+    } catch (const std::bad_alloc&) {
+        code = kOutOfMemory;
+    } catch (...) {
+        code = kReadFailed;
+    }
+    ::_exit(code);
+}
+
+// Address-space cap of the trial read: 256 times the file size (Blosc rarely compresses
+// voxel data beyond 10x), at least 2 GiB (libraries and thread stacks), at most half the RAM.
+// A corrupt size field then fails in about a second instead of filling the machine.
+std::size_t defaultCap(const std::string& path) {
+    std::error_code ec;
+    const std::size_t bytes = std::filesystem::file_size(path, ec);
+    const std::size_t wanted = ec ? halfPhysicalMemory() : bytes * 256;
+    return std::clamp(wanted, std::size_t(2) << 30, std::max(halfPhysicalMemory(), std::size_t(2) << 30));
+}
+
+}  // namespace
+
+void probeVdbReadable(const std::string& path, std::size_t memoryCapBytes) {
+    const std::size_t cap = memoryCapBytes ? memoryCapBytes : defaultCap(path);
+    std::fflush(nullptr);  // the child must not flush the parent's buffered output again
+    const pid_t pid = ::fork();
+    if (pid < 0) return;  // cannot isolate: fall back to reading in-process
+    if (pid == 0) childRead(path, cap);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kReadOk) return;
+    std::string why;
+    if (WIFSIGNALED(status))
+        why = "OpenVDB crashed reading it (" + std::string(::strsignal(WTERMSIG(status))) + ")";
+    else if (WIFEXITED(status) && WEXITSTATUS(status) == kOutOfMemory)
+        why = "reading it would need more than " + std::to_string(cap >> 30) +
+              " GiB: its sizes are corrupt";
+    else
+        why = "OpenVDB cannot read it";
+    throw FileError("'" + path + "' is not a readable VDB file: " + why + " (corrupt or truncated?)");
+}
+
+}  // namespace lh
