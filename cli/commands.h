@@ -11,5 +11,8 @@ void addInfoCommand(CLI::App& app);
 void addRenderEnvmapCommand(CLI::App& app);
 void addRenderViewCommand(CLI::App& app);
 void addMakeExampleCommand(CLI::App& app);
+void addCompareCommand(CLI::App& app);
+void addSynthCommand(CLI::App& app);
+void addOracleCommand(CLI::App& app);
 
 }  // namespace lh::cli

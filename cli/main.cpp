@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
     lh::cli::addRenderEnvmapCommand(app);
     lh::cli::addRenderViewCommand(app);
     lh::cli::addMakeExampleCommand(app);
+    lh::cli::addCompareCommand(app);
+    lh::cli::addSynthCommand(app);
+    lh::cli::addOracleCommand(app);
 
     std::unique_ptr<tbb::global_control> threadLimit;
     app.parse_complete_callback([&] {

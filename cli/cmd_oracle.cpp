@@ -1,0 +1,84 @@
+// `lighthouse oracle SCENE_DIR -o oracle.vdb [--levels 5 --res 64] [--envmaps-out DIR]`
+#include "cli/commands.h"
+#include "core/errors.h"
+#include "render/envmap.h"
+#include "render/image_io.h"
+#include "synth/oracle.h"
+#include "synth/scene_json.h"
+#include "vdb/volume_io.h"
+
+#include <filesystem>
+#include <iostream>
+
+namespace lh::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct OracleCommandOptions {
+    std::string sceneDir;
+    std::string output;
+    int levels = 5;
+    int resolution = 64;
+    int supersample = 3;
+    std::string envmapsOut;
+    std::string hdriDir = LIGHTHOUSE_HDRI_DIR;
+};
+
+void runOracle(const OracleCommandOptions& o) {
+    const fs::path dir(o.sceneDir);
+    if (!fs::is_directory(dir))
+        throw FileError("'" + o.sceneDir + "' is not an example directory (expected scene.json and cameras.json)");
+    synth::BakeOptions bake;
+    const synth::Scene scene = synth::loadScene((dir / "scene.json").string(), &bake);
+    const CamerasFile cameras = loadCamerasFile((dir / "cameras.json").string());
+    if (!cameras.far) throw InputError("'" + (dir / "cameras.json").string() + "' has no 'far' depth");
+    const VolumeLayout layout = VolumeLayout::fromFarDepth(*cameras.far, o.levels, o.resolution);
+
+    std::cerr << "oracle: baking the scene's light (" << scene.primitives.size() << " primitives)\n";
+    synth::PanoramaLibrary panoramas(o.hdriDir);
+    for (const auto& w : scene.windows) panoramas.get(w.panorama);
+    const synth::RayTracer tracer(scene);
+    const synth::RadianceField field(scene, tracer, panoramas, bake);
+    std::cerr << "oracle: voxelising into " << layout.levels << " x " << layout.resolution << "^3\n";
+    LightingVolume volume = synth::oracleVolume(scene, field, layout, {o.supersample, 8.0});
+    volume.refCamera = cameras.ref;
+    saveVolume(o.output, volume);
+    std::cerr << "oracle: " << volume.activeVoxelCount() << " active voxels -> " << o.output << "\n";
+
+    if (!o.envmapsOut.empty()) {
+        fs::create_directories(o.envmapsOut);
+        const RenderVolume prepared(volume);
+        for (const auto& e : cameras.envmaps) {
+            const ImageRGB probe = readImage((dir / e.file).string());  // size of the ground truth
+            EnvmapOptions options;
+            options.width = probe.width;
+            options.height = probe.height;
+            const std::string out = (fs::path(o.envmapsOut) / e.file).string();
+            writeImage(renderEnvmap(prepared, e.position, options), out);
+            std::cerr << "oracle: envmap at (" << e.position.x() << ", " << e.position.y() << ", "
+                      << e.position.z() << ") -> " << out << "\n";
+        }
+    }
+}
+
+}  // namespace
+
+void addOracleCommand(CLI::App& app) {
+    auto o = std::make_shared<OracleCommandOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "oracle", "Voxelise a synthetic example's true geometry and radiance into a lighting volume");
+    cmd->add_option("scene", o->sceneDir, "Example directory written by `lighthouse synth`")->required();
+    cmd->add_option("-o,--output", o->output, "Output .vdb")->required();
+    cmd->add_option("--levels", o->levels, "Nested levels")->capture_default_str();
+    cmd->add_option("--res", o->resolution, "Voxels per side of every level")->capture_default_str();
+    cmd->add_option("--supersample", o->supersample, "Sub-samples per voxel and axis")->capture_default_str();
+    cmd->add_option("--envmaps-out", o->envmapsOut,
+                    "Also render the oracle's envmaps at the example's ground-truth points into this directory");
+    cmd->add_option("--hdri-dir", o->hdriDir, "Folder of the panoramas the scene's windows use")
+        ->capture_default_str();
+    cmd->callback([o] { runOracle(*o); });
+}
+
+}  // namespace lh::cli

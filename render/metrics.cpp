@@ -1,0 +1,141 @@
+#include "render/metrics.h"
+
+#include "core/errors.h"
+#include "render/image_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lh {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMinNorm = 1e-6;  // CONVENTIONS.md: angular error skips darker pixels
+
+std::string sizeText(const ImageRGB& image) {
+    return std::to_string(image.width) + "x" + std::to_string(image.height);
+}
+
+bool allFinite(const ImageRGB& image) {
+    return std::all_of(image.pixels.begin(), image.pixels.end(),
+                       [](float v) { return std::isfinite(v); });
+}
+
+// Every public metric starts here, so none of them silently compares mismatched data.
+void checkComparable(const ImageRGB& pred, const ImageRGB& gt,
+                     const std::vector<std::uint8_t>* mask) {
+    if (pred.width != gt.width || pred.height != gt.height)
+        throw InputError("prediction is " + sizeText(pred) + " but ground truth is " +
+                         sizeText(gt));
+    if (!allFinite(pred)) throw InputError("prediction holds NaN/Inf");
+    if (!allFinite(gt)) throw InputError("ground truth holds NaN/Inf");
+    const std::size_t pixels = std::size_t(gt.width) * gt.height;
+    if (mask && mask->size() != pixels)
+        throw InputError("mask has " + std::to_string(mask->size()) + " entries for a " +
+                         sizeText(gt) + " envmap");
+}
+
+bool counts(const std::vector<std::uint8_t>* mask, std::size_t pixel) {
+    return !mask || (*mask)[pixel] != 0;
+}
+
+double displayValue(float linear) {
+    return srgbEncode(std::clamp(linear, 0.0f, 1.0f));
+}
+
+// atan2 of the cross and dot products stays accurate near 0 and 180 degrees, where acos of
+// the normalised dot product loses half its digits.
+double angleDegrees(const float* a, const float* b) {
+    const double ax = a[0], ay = a[1], az = a[2], bx = b[0], by = b[1], bz = b[2];
+    const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    const double cross = std::sqrt(cx * cx + cy * cy + cz * cz);
+    const double dot = ax * bx + ay * by + az * bz;
+    return std::atan2(cross, dot) * 180.0 / M_PI;
+}
+
+double norm(const float* v) {
+    return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+}
+
+}  // namespace
+
+double psnr(const ImageRGB& pred, const ImageRGB& gt, const std::vector<std::uint8_t>* mask) {
+    checkComparable(pred, gt, mask);
+    double squaredError = 0.0;
+    std::size_t values = 0;
+    const std::size_t pixels = std::size_t(gt.width) * gt.height;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        if (!counts(mask, p)) continue;
+        for (std::size_t i = 3 * p; i < 3 * p + 3; ++i) {
+            const double d = displayValue(pred.pixels[i]) - displayValue(gt.pixels[i]);
+            squaredError += d * d;
+        }
+        values += 3;
+    }
+    if (values == 0) return kNaN;
+    if (squaredError == 0.0) return std::numeric_limits<double>::infinity();
+    return -10.0 * std::log10(squaredError / double(values));  // peak 1: 10 log10(1 / MSE)
+}
+
+double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
+                           const std::vector<std::uint8_t>* mask) {
+    checkComparable(pred, gt, mask);
+    double sum = 0.0;
+    std::size_t used = 0;
+    const std::size_t pixels = std::size_t(gt.width) * gt.height;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const float* a = &pred.pixels[3 * p];
+        const float* b = &gt.pixels[3 * p];
+        if (!counts(mask, p) || norm(a) <= kMinNorm || norm(b) <= kMinNorm) continue;
+        sum += angleDegrees(a, b);
+        ++used;
+    }
+    return used == 0 ? kNaN : sum / double(used);
+}
+
+EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
+                             const std::vector<std::uint8_t>* mask) {
+    EnvmapMetrics m{psnr(pred, gt), angularErrorDegrees(pred, gt), kNaN, kNaN};
+    if (mask) {
+        m.psnrObserved = psnr(pred, gt, mask);
+        m.angularObserved = angularErrorDegrees(pred, gt, mask);
+    }
+    return m;
+}
+
+std::vector<std::uint8_t> loadMask(const std::string& path, int width, int height) {
+    const ImageRGB image = readImage(path);
+    if (image.width != width || image.height != height)
+        throw InputError("mask '" + path + "' is " + sizeText(image) + " but the envmap is " +
+                         std::to_string(width) + "x" + std::to_string(height));
+    std::vector<std::uint8_t> mask(std::size_t(width) * height);
+    for (std::size_t p = 0; p < mask.size(); ++p) {
+        const float* v = &image.pixels[3 * p];
+        mask[p] = v[0] > 0.f || v[1] > 0.f || v[2] > 0.f;
+    }
+    return mask;
+}
+
+MeanStd meanStd(const std::vector<double>& values) {
+    MeanStd result{kNaN, kNaN, 0, 0};
+    double sum = 0.0;
+    for (double v : values) {
+        if (std::isnan(v)) {
+            ++result.nanCount;
+        } else {
+            sum += v;
+            ++result.count;
+        }
+    }
+    if (result.count == 0) return result;
+    result.mean = sum / result.count;
+    double squares = 0.0;  // second pass: no cancellation, unlike E[x^2] - E[x]^2
+    for (double v : values)
+        if (!std::isnan(v)) squares += (v - result.mean) * (v - result.mean);
+    result.std = std::sqrt(squares / result.count);
+    return result;
+}
+
+}  // namespace lh

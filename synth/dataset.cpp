@@ -1,0 +1,234 @@
+#include "synth/dataset.h"
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "render/contact_sheet.h"
+#include "render/image_io.h"
+#include "synth/random.h"
+#include "synth/scene_generator.h"
+#include "synth/scene_json.h"
+#include "synth/scene_render.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace lh::synth {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kMaxAttempts = 25;          // scenes tried per example before giving up
+constexpr double kMinCameraClearance = 0.3;  // metres from the reference camera to any solid
+constexpr double kMinMedianDepth = 1.0;   // metres: rejects views that stare at a nearby wall
+constexpr double kMinBrightness = 0.1;    // mean sRGB value of ref (the paper's rule)
+constexpr double kEnvmapClearance = 0.3;  // metres from an envmap point to any surface
+
+// Why a scene was rejected (for the manifest's statistics).
+struct Rejected : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+void writeText(const std::string& path, const std::string& text) {
+    AtomicOutput out(path);
+    {
+        std::ofstream f(out.tempPath());
+        f << text << "\n";
+        if (!f) throw FileError("cannot write '" + path + "'");
+    }
+    out.commit();
+}
+
+ImageRGB maskImage(const std::vector<uint8_t>& mask, int width, int height) {
+    ImageRGB image(width, height);
+    for (std::size_t i = 0; i < mask.size(); ++i)
+        std::fill_n(&image.pixels[i * 3], 3, mask[i] ? 1.f : 0.f);
+    return image;
+}
+
+void scale(ImageRGB& image, double factor) {
+    for (float& v : image.pixels) v = float(v * factor);
+}
+
+// Envmap points where a user would insert an object: along rays through the central 80% of
+// the reference image, at a depth drawn uniformly between max(0.5 m, 25%) and 85% of the
+// distance to the surface seen there, at least 0.3 m from every surface and from each other.
+// This spreads points over the whole depth range, near objects and far ones, instead of the
+// paper's "beyond the median depth" rule, because users insert objects at every depth.
+std::vector<Vec3d> envmapPoints(const Scene& scene, const RayTracer& tracer, const PinholeCamera& ref,
+                                int count, Random& rng) {
+    std::vector<Vec3d> points;
+    for (int tries = 0; tries < 400 && int(points.size()) < count; ++tries) {
+        const Vec3d dir = ref.pixelDirection(rng.uniform(0.1, 0.9) * ref.width, rng.uniform(0.1, 0.9) * ref.height);
+        const RayHit hit = tracer.intersect(ref.position, dir, 0.0);
+        if (!hit.hit) continue;
+        const double lo = std::max(0.5, 0.25 * hit.t), hi = 0.85 * hit.t;
+        if (hi <= lo) continue;
+        const Vec3d p = ref.position + dir * rng.uniform(lo, hi);
+        if (scene.distanceToSolid(p) < kEnvmapClearance) continue;
+        bool crowded = false;
+        for (const Vec3d& q : points) crowded |= (q - p).length() < 0.3;
+        if (!crowded) points.push_back(p);
+    }
+    if (int(points.size()) < count) throw Rejected("no room for envmap points");
+    return points;
+}
+
+}  // namespace
+
+void SynthOptions::validate() const {
+    if (count < 1 || count > 1000000) throw InputError("--count must be in [1, 1000000]");
+    if (split != "train" && split != "test") throw InputError("--split must be train or test, got '" + split + "'");
+    if (width < 16 || height < 16 || width > 4096 || height > 4096)
+        throw InputError("--size must be between 16x16 and 4096x4096");
+    if (envWidth != 2 * envHeight || envHeight < 4 || envHeight > 2048)
+        throw InputError("--envmap-size must be W x H with W = 2 H and 4 <= H <= 2048");
+    if (envmapsPerExample < 1 || envmapsPerExample > 16) throw InputError("--envmaps must be in [1, 16]");
+    if (supersample < 1 || supersample > 8) throw InputError("--supersample must be in [1, 8]");
+    if (out.empty()) throw InputError("--out is required");
+}
+
+uint64_t exampleSeed(const std::string& split, uint64_t index) {
+    return index * 2 + (split == "test" ? 1 : 0);
+}
+
+ExampleSummary writeExample(uint64_t seed, const std::string& directory, const SynthOptions& o,
+                            PanoramaLibrary& panoramas) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<std::string> names = panoramas.names();
+    for (const auto& n : names) panoramas.get(n);  // load before parallel work
+    ExampleSummary summary;
+    summary.id = fs::path(directory).filename().string();
+    for (int attempt = 0; attempt < kMaxAttempts; ++attempt) {
+        const uint64_t sceneSeed = mixSeed(seed, attempt);
+        GeneratedScene gen = generateScene(sceneSeed, names, o.width, o.height);
+        Scene& scene = gen.scene;
+        const Rig& rig = gen.rig;
+        try {
+            if (scene.distanceToSolid(rig.ref.position) < kMinCameraClearance ||
+                scene.distanceToSolid(rig.src.position) < kMinCameraClearance)
+                throw Rejected("camera too close to a surface");
+            const RayTracer tracer(scene);
+            const ImageRGB depth = renderDepth(tracer, rig.ref);
+            std::vector<float> depths;
+            for (std::size_t i = 0; i < depth.pixels.size(); i += 3) depths.push_back(depth.pixels[i]);
+            std::sort(depths.begin(), depths.end());
+            if (!std::isfinite(depths.back())) throw Rejected("rays leave the room");
+            if (depths[depths.size() / 2] < kMinMedianDepth) throw Rejected("facing a nearby wall");
+            Random rng(mixSeed(sceneSeed, 0xE7));
+            const std::vector<Vec3d> points = envmapPoints(scene, tracer, rig.ref, o.envmapsPerExample, rng);
+
+            const RadianceField field(scene, tracer, panoramas, o.bake);
+            // Auto-exposure: scale the scene so that the reference view's mean luminance is
+            // about 0.18 (a grey card), varied by +-40% per example.
+            ImageRGB ref = renderSceneView(tracer, field, rig.ref, o.supersample);
+            double mean = 0;
+            for (std::size_t i = 0; i < ref.pixels.size(); i += 3) mean += luminance(&ref.pixels[i]);
+            mean /= ref.pixels.size() / 3;
+            if (!(mean > 0)) throw Rejected("black reference view");
+            scene.exposure = 0.18 * rng.uniform(0.6, 1.4) / mean;
+            scale(ref, scene.exposure);
+            double brightness = 0;
+            for (float v : ref.pixels) brightness += srgbEncode(std::clamp(v, 0.f, 1.f));
+            if (brightness / ref.pixels.size() < kMinBrightness) throw Rejected("too dark");
+
+            // Everything is rendered; write it under a temporary name, then rename.
+            const fs::path final(directory), temp = final.parent_path() / ("." + summary.id + ".partial");
+            fs::remove_all(temp);
+            fs::create_directories(temp);
+            const auto file = [&](const std::string& name) { return (temp / name).string(); };
+            writeImage(ref, file("ref.exr"));
+            writePng(ref, file("ref.png"));
+            for (const auto& [name, camera] : {std::pair{"src", &rig.src}, std::pair{"tgt", &rig.tgt}}) {
+                const ImageRGB view = renderSceneView(tracer, field, *camera, o.supersample);
+                writeImage(view, file(std::string(name) + ".exr"));
+                writePng(view, file(std::string(name) + ".png"));
+            }
+            writeImage(depth, file("depth.exr"));
+            CamerasFile cameras;
+            cameras.ref = rig.ref;
+            cameras.src = rig.src;
+            cameras.tgt = rig.tgt;
+            // Depth range seen by ref: 1st and 99th percentiles (CONVENTIONS.md).
+            cameras.near = double(depths[depths.size() / 100]);
+            cameras.far = double(depths[depths.size() * 99 / 100]);
+            for (std::size_t k = 0; k < points.size(); ++k) {
+                const std::string stem = "env_" + std::to_string(k);
+                SceneEnvmap env = renderSceneEnvmap(tracer, field, points[k], o.envWidth, o.envHeight, rig.ref, o.supersample);
+                writeImage(env.radiance, file(stem + ".exr"));
+                writePng(env.radiance, file(stem + ".png"));
+                writePng(maskImage(env.observed, o.envWidth, o.envHeight), file(stem + "_mask.png"));
+                writeImage(env.hitPositions, file(stem + "_pos.exr"));
+                cameras.envmaps.push_back({points[k], stem + ".exr", stem + "_pos.exr"});
+            }
+            writeText(file("cameras.json"), camerasToJson(cameras));
+            writeText(file("scene.json"), sceneToJson(scene, o.bake));
+            fs::remove_all(final);
+            fs::rename(temp, final);
+            summary.seed = sceneSeed;
+            summary.rejected = attempt;
+            summary.texels = field.texelCount();
+            summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            return summary;
+        } catch (const Rejected&) {
+            continue;  // the next scene seed
+        }
+    }
+    throw Error("example " + summary.id + ": no acceptable scene in " + std::to_string(kMaxAttempts) + " attempts");
+}
+
+void writeDataset(const SynthOptions& o, const std::function<void(int, int, double)>& progress) {
+    o.validate();
+    PanoramaLibrary panoramas(o.hdriDir);
+    panoramas.names();  // fails before anything is written if there are none
+    fs::create_directories(o.out);
+    nlohmann::json examples = nlohmann::json::array();
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<std::string> dirs;
+    for (int i = 0; i < o.count; ++i) {
+        char id[16];
+        std::snprintf(id, sizeof id, "%06d", i);
+        const std::string dir = (fs::path(o.out) / id).string();
+        const uint64_t seed = exampleSeed(o.split, o.seed + i);
+        ExampleSummary s;
+        if (fs::exists(fs::path(dir) / "scene.json")) {  // complete from an earlier run
+            s.id = id;
+            s.seed = loadScene((fs::path(dir) / "scene.json").string()).seed;
+        } else {
+            s = writeExample(seed, dir, o, panoramas);
+        }
+        dirs.push_back(dir);
+        examples.push_back({{"id", s.id}, {"example_seed", seed}, {"scene_seed", s.seed},
+                            {"rejected_scenes", s.rejected}, {"seconds", s.seconds}, {"texels", s.texels}});
+        if (progress)
+            progress(i + 1, o.count, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    nlohmann::json manifest = {
+        {"generator_version", 1}, {"split", o.split}, {"first_index", o.seed}, {"count", o.count},
+        {"view_size", {o.width, o.height}}, {"envmap_size", {o.envWidth, o.envHeight}},
+        {"envmaps_per_example", o.envmapsPerExample}, {"supersample", o.supersample},
+        {"bake", {{"texel_size", o.bake.texelSize}, {"max_texels", o.bake.maxTexels},
+                  {"gather_rays", o.bake.gatherRays}, {"light_samples", o.bake.lightSamples},
+                  {"bounces", o.bake.bounces}}},
+        {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
+        {"examples", examples}};
+    writeText((fs::path(o.out) / "manifest.json").string(), manifest.dump(1));
+
+    // A picture of the first examples: ref | src | env_0.
+    std::vector<std::vector<ImageRGB>> rows;
+    for (std::size_t i = 0; i < std::min<std::size_t>(4, dirs.size()); ++i) {
+        const fs::path d(dirs[i]);
+        rows.push_back({readImage((d / "ref.exr").string()), readImage((d / "src.exr").string()),
+                        readImage((d / "env_0.exr").string())});
+    }
+    writePng(contactSheet(rows, 120), (fs::path(o.out) / "contact_sheet.png").string());
+}
+
+}  // namespace lh::synth

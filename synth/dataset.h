@@ -1,0 +1,55 @@
+// Synthetic data sets (issue 3): per example a stereo pair, a held-out view, ground-truth
+// envmaps at points where a user would insert an object, the reference depth map, an
+// observed-content mask per envmap, cameras.json and scene.json. Deterministic by seed.
+//
+// Layout of DIR (one split per directory):
+//   manifest.json                 generator version, split, seeds, sizes, examples, timings
+//   contact_sheet.png             ref | src | env_0 of the first examples
+//   000000/ ref.exr ref.png src.exr src.png tgt.exr tgt.png depth.exr
+//           env_<k>.exr env_<k>.png env_<k>_mask.png env_<k>_pos.exr cameras.json scene.json
+#pragma once
+
+#include "synth/radiance_field.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace lh::synth {
+
+struct SynthOptions {
+    uint64_t seed = 0;   // first example's index; example i uses seed + i
+    int count = 10;
+    std::string out;
+    std::string split = "train";  // "train" or "test": disjoint seeds (even / odd)
+    int width = 320, height = 240;          // views
+    int envWidth = 240, envHeight = 120;    // envmaps
+    int envmapsPerExample = 2;
+    int supersample = 2;  // per axis, for views and envmaps
+    std::string hdriDir;
+    BakeOptions bake;
+
+    void validate() const;  // throws InputError / ResourceError
+};
+
+// Seed of example `index` of a split: even for train, odd for test, so splits never share.
+uint64_t exampleSeed(const std::string& split, uint64_t index);
+
+struct ExampleSummary {
+    std::string id;
+    uint64_t seed = 0;       // the scene seed that was accepted
+    int rejected = 0;        // scenes rejected before it (camera too close, facing a wall...)
+    double seconds = 0;
+    std::size_t texels = 0;
+};
+
+// Writes one example into `directory` (created atomically: a temporary name, then rename).
+ExampleSummary writeExample(uint64_t seed, const std::string& directory, const SynthOptions& options,
+                            PanoramaLibrary& panoramas);
+
+// Writes `count` examples, skipping ones already complete (so an interrupted run resumes),
+// then the manifest and a contact sheet. `progress(done, total, secondsSoFar)` after each.
+void writeDataset(const SynthOptions& options,
+                  const std::function<void(int, int, double)>& progress = {});
+
+}  // namespace lh::synth

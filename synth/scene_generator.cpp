@@ -1,0 +1,245 @@
+#include "synth/scene_generator.h"
+
+#include "core/errors.h"
+#include "synth/random.h"
+
+#include <cmath>
+
+namespace lh::synth {
+
+namespace {
+
+// Room frame: OpenCV-like axes with y down, the floor at y = 0, the ceiling at y = -height,
+// the room centred on x = z = 0.
+struct RoomSize {
+    double width, depth, height;  // x, z, y extents, metres
+};
+
+Vec3d hsvToLinear(double h, double s, double v) {
+    const double c = v * s, hp = std::fmod(h * 6.0, 6.0), x = c * (1 - std::abs(std::fmod(hp, 2.0) - 1));
+    Vec3d rgb = hp < 1 ? Vec3d(c, x, 0) : hp < 2 ? Vec3d(x, c, 0) : hp < 3 ? Vec3d(0, c, x)
+              : hp < 4 ? Vec3d(0, x, c) : hp < 5 ? Vec3d(x, 0, c) : Vec3d(c, 0, x);
+    rgb += Vec3d(v - c);
+    for (int i = 0; i < 3; ++i) rgb[i] = std::pow(rgb[i], 2.2);  // perceptual -> linear albedo
+    return rgb;
+}
+
+Vec3d randomColor(Random& rng, double minValue = 0.25, double maxValue = 0.9) {
+    return hsvToLinear(rng.uniform(), rng.uniform(0.0, 0.8), rng.uniform(minValue, maxValue));
+}
+
+Texture randomTexture(Random& rng) {
+    Texture t;
+    t.kind = TextureKind(rng.integer(0, 4));
+    t.colorA = randomColor(rng);
+    t.colorB = t.colorA * rng.uniform(0.35, 0.8);  // same hue, darker: readable patterns
+    if (rng.chance(0.4)) t.colorB = randomColor(rng);
+    t.scale = rng.uniform(0.1, 0.8);
+    t.noiseSeed = uint32_t(rng.next());
+    return t;
+}
+
+Texture woodTexture(Random& rng) {
+    Texture t;
+    t.kind = TextureKind::Wood;
+    t.colorA = hsvToLinear(rng.uniform(0.05, 0.11), rng.uniform(0.4, 0.7), rng.uniform(0.45, 0.75));
+    t.colorB = t.colorA * 0.55;
+    t.scale = rng.uniform(0.3, 0.9);
+    t.noiseSeed = uint32_t(rng.next());
+    return t;
+}
+
+Mat3d rotationY(double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return Mat3d(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c);
+}
+
+Mat3d rotationX(double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return Mat3d(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c);
+}
+
+// A quad on the room's wall face `face` (0: x-, 1: x+, 4: z-, 5: z+) or ceiling (2), facing
+// into the room; (along, down) is its centre in the face's in-plane coordinates.
+Primitive wallQuad(const RoomSize& room, int face, double along, double alongHalf, double y, double yHalf) {
+    Primitive q;
+    q.shape = Shape::Quad;
+    q.half = Vec3d(alongHalf, yHalf, 0);
+    // Local x runs along the wall, local y down the wall, local z into the room.
+    switch (face) {
+        case 0: q.centre = Vec3d(-room.width / 2, y, along); q.rotation = Mat3d(0.0, 0.0, 1.0, 0.0, 1.0, 0.0, -1.0, 0.0, 0.0); break;
+        case 1: q.centre = Vec3d(room.width / 2, y, along); q.rotation = Mat3d(0.0, 0.0, -1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0); break;
+        case 4: q.centre = Vec3d(along, y, -room.depth / 2); q.rotation = Mat3d::identity(); break;
+        case 5: q.centre = Vec3d(along, y, room.depth / 2); q.rotation = Mat3d(-1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0); break;
+        default:  // ceiling: local z points down (+y), into the room
+            q.centre = Vec3d(along, -room.height, y);
+            q.rotation = Mat3d(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0);
+            break;
+    }
+    return q;
+}
+
+double wallLength(const RoomSize& room, int face) { return face < 2 ? room.depth : room.width; }
+
+struct Footprint {
+    double x, z, radius;
+};
+
+bool overlaps(const std::vector<Footprint>& placed, const Footprint& f) {
+    for (const auto& p : placed)
+        if (std::hypot(p.x - f.x, p.z - f.z) < p.radius + f.radius + 0.1) return true;
+    return false;
+}
+
+}  // namespace
+
+GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& panoramas, int width,
+                             int height) {
+    if (panoramas.empty()) throw InputError("scene generator: no panoramas to show through windows");
+    Random rng(seed);
+    Scene scene;
+    scene.seed = seed;
+    const RoomSize room{rng.uniform(3, 10), rng.uniform(3, 10), rng.uniform(2.4, 3.5)};
+
+    // The room: walls share one texture, the floor is wood or patterned, the ceiling plain.
+    Primitive shell;
+    shell.shape = Shape::Box;
+    shell.inverted = true;
+    shell.centre = Vec3d(0, -room.height / 2, 0);
+    shell.half = Vec3d(room.width / 2, room.height / 2, room.depth / 2);
+    shell.label = "room";
+    const Texture walls = randomTexture(rng);
+    Texture ceiling;
+    ceiling.colorA = ceiling.colorB = hsvToLinear(rng.uniform(), 0.1, rng.uniform(0.75, 0.95));
+    const Texture floor = rng.chance(0.6) ? woodTexture(rng) : randomTexture(rng);
+    // Box faces: 0 x-, 1 x+, 2 y- (ceiling: y is down), 3 y+ (floor), 4 z-, 5 z+.
+    shell.faceTextures = {walls, walls, ceiling, floor, walls, walls};
+    scene.primitives.push_back(shell);
+    scene.roomIndex = 0;
+
+    // Windows: 1-3, on walls, not overlapping each other.
+    const int windowCount = rng.integer(1, 3);
+    std::vector<std::pair<int, std::pair<double, double>>> usedSpans;  // face, [lo, hi]
+    for (int w = 0, tries = 0; w < windowCount && tries < 50; ++tries) {
+        const int face = std::vector<int>{0, 1, 4, 5}[rng.integer(0, 3)];
+        const double length = wallLength(room, face);
+        const double halfWidth = rng.uniform(0.4, std::min(1.0, length / 2 - 0.3));
+        const double along = rng.uniform(-length / 2 + halfWidth + 0.2, length / 2 - halfWidth - 0.2);
+        bool clash = false;
+        for (const auto& [f, span] : usedSpans)
+            clash |= f == face && along + halfWidth > span.first - 0.2 && along - halfWidth < span.second + 0.2;
+        if (clash) continue;
+        usedSpans.push_back({face, {along - halfWidth, along + halfWidth}});
+        const double halfHeight = rng.uniform(0.4, std::min(0.8, (room.height - 1.1) / 2));
+        const double sill = rng.uniform(0.7, std::max(0.71, room.height - 2 * halfHeight - 0.2));
+        Primitive q = wallQuad(room, face, along, halfWidth, -(sill + halfHeight), halfHeight);
+        q.emission = Emission::Window;
+        q.window = int(scene.windows.size());
+        q.label = "window";
+        scene.primitives.push_back(q);
+        WindowView view;
+        view.panorama = panoramas[rng.integer(0, int(panoramas.size()) - 1)];
+        view.yaw = rng.uniform(0, 2 * M_PI);
+        view.scale = rng.uniform(0.6, 1.6);
+        view.viewCentre = shell.centre;
+        scene.windows.push_back(view);
+        ++w;
+    }
+
+    // Ceiling panels: 0-2 warm or cool emissive rectangles.
+    for (int i = 0, n = rng.integer(0, 2); i < n; ++i) {
+        const double hx = rng.uniform(0.2, 0.6), hz = rng.uniform(0.2, 0.6);
+        Primitive q = wallQuad(room, 2, rng.uniform(-room.width / 2 + hx + 0.2, room.width / 2 - hx - 0.2), hx,
+                               rng.uniform(-room.depth / 2 + hz + 0.2, room.depth / 2 - hz - 0.2), hz);
+        q.emission = Emission::Constant;
+        const double warmth = rng.uniform(0, 1);
+        q.radiance = Vec3d(1.0, 0.92 - 0.12 * warmth + 0.05, 0.85 - 0.3 * warmth + 0.1) * rng.uniform(3, 10);
+        q.label = "panel";
+        scene.primitives.push_back(q);
+    }
+
+    // Furniture on the floor: 3-12 boxes, cylinders and spheres, apart from each other.
+    std::vector<Footprint> placed;
+    const int furniture = rng.integer(3, 12);
+    for (int i = 0, tries = 0; i < furniture && tries < 200; ++tries) {
+        Primitive p;
+        const int kind = rng.integer(0, 9);  // 60% boxes, 25% cylinders, 15% spheres
+        if (kind < 6) {
+            p.shape = Shape::Box;
+            p.half = Vec3d(rng.uniform(0.2, 0.9), rng.uniform(0.2, 0.6), rng.uniform(0.2, 0.6));
+            p.rotation = rotationY(rng.uniform(0, M_PI));
+            p.label = "box";
+        } else if (kind < 9) {
+            p.shape = Shape::Cylinder;
+            p.half = Vec3d(rng.uniform(0.12, 0.4), rng.uniform(0.2, 0.55), 0);
+            p.label = "cylinder";
+        } else {
+            p.shape = Shape::Sphere;
+            p.half = Vec3d(rng.uniform(0.12, 0.4), 0, 0);
+            p.label = "sphere";
+        }
+        const double footprint = p.shape == Shape::Box ? std::hypot(p.half.x(), p.half.z()) : p.half.x();
+        const double height = p.shape == Shape::Sphere ? p.half.x() : p.half.y();
+        if (2 * footprint + 0.2 > std::min(room.width, room.depth)) continue;
+        const Footprint f{rng.uniform(-room.width / 2 + footprint + 0.05, room.width / 2 - footprint - 0.05),
+                          rng.uniform(-room.depth / 2 + footprint + 0.05, room.depth / 2 - footprint - 0.05), footprint};
+        if (overlaps(placed, f)) continue;
+        placed.push_back(f);
+        p.centre = Vec3d(f.x, -height, f.z);
+        p.texture = rng.chance(0.3) ? woodTexture(rng) : randomTexture(rng);
+        scene.primitives.push_back(p);
+        ++i;
+    }
+
+    // Lamps: 0-2 emissive spheres hanging below the ceiling.
+    for (int i = 0, n = rng.integer(0, 2); i < n; ++i) {
+        Primitive lamp;
+        lamp.shape = Shape::Sphere;
+        lamp.half = Vec3d(rng.uniform(0.08, 0.18), 0, 0);
+        lamp.centre = Vec3d(rng.uniform(-room.width / 2 + 0.5, room.width / 2 - 0.5),
+                            -room.height + rng.uniform(0.35, 0.8),
+                            rng.uniform(-room.depth / 2 + 0.5, room.depth / 2 - 0.5));
+        lamp.emission = Emission::Constant;
+        lamp.radiance = Vec3d(1.0, 0.85, 0.65) * rng.uniform(5, 20);
+        lamp.label = "lamp";
+        scene.primitives.push_back(lamp);
+    }
+
+    // The reference camera: standing height, away from walls and furniture, looking roughly
+    // level. Its pose defines the world frame.
+    Vec3d eye(0.0);
+    for (int tries = 0; tries < 200; ++tries) {
+        eye = Vec3d(rng.uniform(-room.width / 2 + 0.5, room.width / 2 - 0.5), -rng.uniform(1.2, 1.7),
+                    rng.uniform(-room.depth / 2 + 0.5, room.depth / 2 - 0.5));
+        if (scene.distanceToSolid(eye) > 0.5) break;
+    }
+    const Mat3d camToRoom = rotationY(rng.uniform(0, 2 * M_PI)) * rotationX(rng.uniform(-0.17, 0.09));
+    const Mat3d roomToWorld = camToRoom.transpose();
+    for (Primitive& p : scene.primitives) {
+        p.centre = roomToWorld * (p.centre - eye);
+        p.rotation = roomToWorld * p.rotation;
+    }
+    for (WindowView& w : scene.windows) {
+        w.viewCentre = roomToWorld * (w.viewCentre - eye);
+        w.roomToWorld = roomToWorld;
+    }
+
+    GeneratedScene out;
+    out.scene = scene;
+    PinholeCamera ref;
+    ref.width = width;
+    ref.height = height;
+    const double fov = rng.uniform(50, 70) * M_PI / 180;  // horizontal field of view
+    ref.fx = ref.fy = (width / 2.0) / std::tan(fov / 2);
+    ref.cx = width / 2.0;
+    ref.cy = height / 2.0;
+    out.rig.ref = ref;
+    out.rig.src = ref;
+    out.rig.src.position = Vec3d(rng.uniform(0.05, 0.15), 0, 0);
+    out.rig.tgt = ref;
+    out.rig.tgt.position = Vec3d(rng.uniform(-0.15, 0.25), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.2));
+    out.rig.tgt.rotation = rotationY(rng.uniform(-0.09, 0.09)) * rotationX(rng.uniform(-0.05, 0.05));
+    return out;
+}
+
+}  // namespace lh::synth

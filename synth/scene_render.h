@@ -1,0 +1,35 @@
+// Ground-truth pictures of a synthetic scene: perspective views, depth maps and envmaps
+// (CONVENTIONS.md layout) with the first-hit positions and the observed-content mask.
+#pragma once
+
+#include "render/image.h"
+#include "synth/radiance_field.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace lh::synth {
+
+// Linear radiance through every pixel; `supersample`^2 fixed sub-pixel rays per pixel.
+ImageRGB renderSceneView(const RayTracer& tracer, const RadianceField& field,
+                         const PinholeCamera& camera, int supersample = 2);
+
+// Depth along the optical axis (metres, z in the camera frame) of the first hit through each
+// pixel centre, in all three channels; +inf where nothing is hit.
+ImageRGB renderDepth(const RayTracer& tracer, const PinholeCamera& camera);
+
+struct SceneEnvmap {
+    ImageRGB radiance;            // linear, supersampled
+    ImageRGB hitPositions;        // world position of the first hit along each pixel centre
+    std::vector<uint8_t> observed;  // 1 where that hit is visible in the reference view
+};
+
+SceneEnvmap renderSceneEnvmap(const RayTracer& tracer, const RadianceField& field,
+                              const Vec3d& position, int width, int height,
+                              const PinholeCamera& reference, int supersample = 2);
+
+// True if a world point on a surface is seen by the camera: in front of it, inside its image
+// and not hidden by anything closer.
+bool visibleFrom(const RayTracer& tracer, const PinholeCamera& camera, const Vec3d& point);
+
+}  // namespace lh::synth

@@ -1,0 +1,59 @@
+# Command-line tests of `lighthouse synth` and `lighthouse oracle` (included by CMakeLists.txt).
+
+lighthouse_cli_ok(help_synth
+  STDOUT "Usage:.*synth" "--seed" "--count" "--split" "--envmap-size"
+  ARGS synth --help)
+lighthouse_cli_ok(help_oracle
+  STDOUT "Usage:.*oracle" "--levels" "--res" "--envmaps-out"
+  ARGS oracle --help)
+
+lighthouse_cli_error(synth_bad_split
+  EXPECT "--split must be train or test"
+  ABSENT syn_bad_split
+  ARGS synth --out syn_bad_split --split validation --count 1)
+lighthouse_cli_error(synth_bad_size
+  EXPECT "--size must be between"
+  ABSENT syn_bad_size
+  ARGS synth --out syn_bad_size --size 10x10 --count 1)
+lighthouse_cli_error(synth_bad_envmap_size
+  EXPECT "--envmap-size must be W x H with W = 2 H"
+  ABSENT syn_bad_env
+  ARGS synth --out syn_bad_env --envmap-size 100x100 --count 1)
+lighthouse_cli_error(synth_zero_count
+  EXPECT "--count must be in"
+  ABSENT syn_zero
+  ARGS synth --out syn_zero --count 0)
+lighthouse_cli_error(synth_missing_panoramas
+  EXPECT "no panoramas.*no_such_hdri"
+  ABSENT syn_no_hdri
+  ARGS synth --out syn_no_hdri --count 1 --hdri-dir no_such_hdri)
+
+# A tiny data set: the fixture of the oracle and compare tests below.
+lighthouse_cli_ok(synth_tiny
+  FILES syn_tiny/manifest.json syn_tiny/000001/cameras.json syn_tiny/000001/scene.json
+  PNG syn_tiny/contact_sheet.png syn_tiny/000000/ref.png syn_tiny/000000/env_0_mask.png
+  EXR syn_tiny/000000/ref.exr syn_tiny/000000/depth.exr syn_tiny/000000/env_0.exr
+  ARGS synth --seed 3 --count 2 --size 48x36 --envmap-size 32x16 --envmaps 1 --supersample 1
+       --out syn_tiny)
+set_tests_properties(cli.ok.synth_tiny PROPERTIES FIXTURES_SETUP lighthouse_synth_tiny)
+
+lighthouse_cli_ok(oracle_tiny
+  FILES oracle_tiny.vdb
+  EXR oracle_env/env_0.exr
+  ARGS oracle syn_tiny/000000 -o oracle_tiny.vdb --levels 3 --res 16 --envmaps-out oracle_env)
+lighthouse_cli_ok(compare_oracle_with_ground_truth
+  STDOUT "1 envmap" "PSNR"
+  ARGS compare --batch oracle_env syn_tiny/000000)
+set_tests_properties(cli.ok.compare_oracle_with_ground_truth PROPERTIES DEPENDS cli.ok.oracle_tiny)
+foreach(t cli.ok.oracle_tiny cli.ok.compare_oracle_with_ground_truth)
+  set_tests_properties(${t} PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_synth_tiny")
+endforeach()
+
+lighthouse_cli_error(oracle_not_a_directory
+  EXPECT "'no_such_example' is not an example directory"
+  ABSENT oracle_bad.vdb
+  ARGS oracle no_such_example -o oracle_bad.vdb)
+lighthouse_cli_error(oracle_directory_without_scene
+  EXPECT "cannot open scene file.*adir/scene[.]json"
+  ABSENT oracle_bad2.vdb
+  ARGS oracle adir -o oracle_bad2.vdb)
