@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 #include <unistd.h>
 
@@ -44,6 +45,16 @@ void AtomicOutput::commit() {
     fs::rename(tempPath_, finalPath_, ec);
     if (ec) throw FileError("cannot write '" + finalPath_ + "': " + ec.message());
     committed_ = true;
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+    AtomicOutput out(path);
+    {
+        std::ofstream f(out.tempPath());
+        f << text << "\n";
+        if (!f) throw FileError("cannot write '" + path + "'");
+    }
+    out.commit();
 }
 
 std::string fileExtension(const std::string& path) {

@@ -27,6 +27,9 @@ private:
     bool committed_ = false;
 };
 
+// Writes `text` plus a newline to `path` atomically. Throws FileError.
+void writeTextFile(const std::string& path, const std::string& text);
+
 // Lower-cased extension including the dot (".exr"), or "" if none.
 std::string fileExtension(const std::string& path);
 

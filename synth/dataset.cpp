@@ -36,16 +36,6 @@ struct Rejected : std::runtime_error {
 
 double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
-void writeText(const std::string& path, const std::string& text) {
-    AtomicOutput out(path);
-    {
-        std::ofstream f(out.tempPath());
-        f << text << "\n";
-        if (!f) throw FileError("cannot write '" + path + "'");
-    }
-    out.commit();
-}
-
 ImageRGB maskImage(const std::vector<uint8_t>& mask, int width, int height) {
     ImageRGB image(width, height);
     for (std::size_t i = 0; i < mask.size(); ++i)
@@ -168,8 +158,8 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
                 writeImage(env.hitPositions, file(stem + "_pos.exr"));
                 cameras.envmaps.push_back({points[k], stem + ".exr", stem + "_pos.exr"});
             }
-            writeText(file("cameras.json"), camerasToJson(cameras));
-            writeText(file("scene.json"), sceneToJson(scene, o.bake));
+            writeTextFile(file("cameras.json"), camerasToJson(cameras));
+            writeTextFile(file("scene.json"), sceneToJson(scene, o.bake));
             fs::remove_all(final);
             fs::rename(temp, final);
             summary.seed = sceneSeed;
@@ -219,7 +209,7 @@ void writeDataset(const SynthOptions& o, const std::function<void(int, int, doub
                   {"bounces", o.bake.bounces}}},
         {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
         {"examples", examples}};
-    writeText((fs::path(o.out) / "manifest.json").string(), manifest.dump(1));
+    writeTextFile((fs::path(o.out) / "manifest.json").string(), manifest.dump(1));
 
     // A picture of the first examples: ref | src | env_0.
     std::vector<std::vector<ImageRGB>> rows;

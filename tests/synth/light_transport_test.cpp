@@ -10,6 +10,17 @@
 namespace lh::synth {
 namespace {
 
+// 64x48 pinhole camera at the origin looking along +z.
+PinholeCamera smallCamera() {
+    PinholeCamera cam;
+    cam.width = 64;
+    cam.height = 48;
+    cam.fx = cam.fy = 40;
+    cam.cx = 32;
+    cam.cy = 24;
+    return cam;
+}
+
 PanoramaLibrary& panoramas() {
     static PanoramaLibrary library(LIGHTHOUSE_HDRI_DIR);
     return library;
@@ -53,6 +64,19 @@ TEST(LightTransport, FurnaceRoomIsUniformAndLitSphereShinesAlbedoTimesL) {
     EXPECT_NEAR(sphereSum / spherePixels, 0.8 * L.x(), 0.03 * 0.8 * L.x());
 }
 
+TEST(LightTransport, ClosedEmissiveBoxIsUniformEverywhereInside) {
+    Scene s = test::blackRoom();
+    const Vec3d L(0.3, 2.0, 7.5);
+    for (int f = 0; f < 6; ++f) s.primitives.push_back(test::faceQuad(s.primitives[0], f, L));
+    const RayTracer tracer(s);
+    const RadianceField field(s, tracer, panoramas());
+    for (const Vec3d& at : {Vec3d(0.0), Vec3d(1.9, -1.4, 2.9), Vec3d(-1.0, 1.0, -2.5)}) {
+        const SceneEnvmap env = renderSceneEnvmap(tracer, field, at, 64, 32, smallCamera(), 2);
+        for (std::size_t i = 0; i < env.radiance.pixels.size(); ++i)
+            ASSERT_FLOAT_EQ(env.radiance.pixels[i], float(L[i % 3])) << at;
+    }
+}
+
 TEST(LightTransport, PanelAppearsAtItsEnvmapPixels) {
     Scene s = test::blackRoom();
     Primitive panel = test::faceQuad(s.primitives[0], 5, Vec3d(5.0));  // the +z wall, ahead
@@ -72,12 +96,7 @@ TEST(LightTransport, PanelAppearsAtItsEnvmapPixels) {
 TEST(LightTransport, DepthMapMatchesTheRoomsPlanes) {
     const Scene s = test::blackRoom();
     const RayTracer tracer(s);
-    PinholeCamera cam;
-    cam.width = 64;
-    cam.height = 48;
-    cam.fx = cam.fy = 40;
-    cam.cx = 32;
-    cam.cy = 24;
+    const PinholeCamera cam = smallCamera();
     const ImageRGB depth = renderDepth(tracer, cam);
     for (int y = 0; y < cam.height; ++y)
         for (int x = 0; x < cam.width; ++x) {
@@ -93,12 +112,7 @@ TEST(LightTransport, DepthMapMatchesTheRoomsPlanes) {
 TEST(LightTransport, ObservedMaskFollowsTheReferenceFrustum) {
     Scene s = test::blackRoom();
     const RayTracer tracer(s);
-    PinholeCamera cam;
-    cam.width = 64;
-    cam.height = 48;
-    cam.fx = cam.fy = 40;
-    cam.cx = 32;
-    cam.cy = 24;
+    const PinholeCamera cam = smallCamera();
     const RadianceField field(s, tracer, panoramas());
     const SceneEnvmap env = renderSceneEnvmap(tracer, field, Vec3d(0, 0, 1), 120, 60, cam, 1);
     const EnvmapCoord ahead = envmapCoordinate(Vec3d(0, 0, 1), 120, 60);
