@@ -2,7 +2,7 @@
 // the `small` network configuration's sizes (views 160x120, envmaps 120x60).
 // Run: build/bench/lighthouse_synth_bench [--benchmark_filter=...]
 #include "synth/dataset.h"
-#include "synth/random.h"
+#include "core/random.h"
 #include "synth/scene_generator.h"
 
 #include <benchmark/benchmark.h>

@@ -14,5 +14,6 @@ void addMakeExampleCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addSynthCommand(CLI::App& app);
 void addOracleCommand(CLI::App& app);
+void addInsertCommand(CLI::App& app);
 
 }  // namespace lh::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     lh::cli::addCompareCommand(app);
     lh::cli::addSynthCommand(app);
     lh::cli::addOracleCommand(app);
+    lh::cli::addInsertCommand(app);
 
     std::unique_ptr<tbb::global_control> threadLimit;
     app.parse_complete_callback([&] {

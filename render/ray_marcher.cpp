@@ -32,7 +32,10 @@ bool integrateSpan(const RenderLevel& level, const Vec3d& q0, const Vec3d& qd, d
         // (1 - exp(-tau)) / sigma, stable for tiny sigma (-> dt) and huge sigma (-> 1/sigma).
         const double weight = tau > 1e-12 ? -std::expm1(-tau) / s.sigma : dt;
         for (int c = 0; c < 3; ++c) r.radiance[c] += r.transmittance * s.emission[c] * weight;
+        const double before = r.transmittance;
         r.transmittance *= std::exp(-tau);
+        if (before >= 0.5 && r.transmittance < 0.5)  // crossing inside this segment
+            r.surfaceDistance = (t - 0.5 * dt) + std::log(before / 0.5) / s.sigma;
         if (r.transmittance < minT) return false;
     }
     return true;

@@ -9,6 +9,8 @@
 
 #include "render/render_volume.h"
 
+#include <limits>
+
 namespace lh {
 
 struct MarchOptions {
@@ -25,6 +27,9 @@ struct MarchOptions {
 struct RayResult {
     double radiance[3] = {0.0, 0.0, 0.0};  // linear RGB
     double transmittance = 1.0;            // what is left for the (black) space behind
+    // Distance at which the transmittance first fell below 1/2: where the ray "hits" the
+    // scene (object insertion uses it as the scene's depth). Infinite if it never did.
+    double surfaceDistance = std::numeric_limits<double>::infinity();
 };
 
 // `dir` must be unit length; t is measured in scene units from `origin`.

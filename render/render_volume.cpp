@@ -260,6 +260,17 @@ RenderSample RenderVolume::sampleWorld(const Vec3d& world) const {
     return {0.f, {0.f, 0.f, 0.f}};
 }
 
+double RenderVolume::voxelSizeAt(const Vec3d& world) const {
+    for (int k = int(levels.size()) - 1; k >= 0; --k) {
+        const RenderLevel& level = levels[k];
+        const Vec3d q = level.toIndex(world);
+        if (q.x() >= level.domainLo.x() && q.x() <= level.domainHi.x() && q.y() >= level.domainLo.y() &&
+            q.y() <= level.domainHi.y() && q.z() >= level.domainLo.z() && q.z() <= level.domainHi.z())
+            return std::cbrt(level.voxelVolume);
+    }
+    return 0.0;
+}
+
 std::size_t RenderVolume::storedBricks() const {
     std::size_t n = 0;
     for (const auto& l : levels) n += l.brickData.size() / (kLatticeValues * 4);

@@ -73,6 +73,9 @@ public:
 
     // Field at a world point under finest-wins (for tests and reference checks).
     RenderSample sampleWorld(const Vec3d& world) const;
+    // Edge length (cube root of the voxel volume) of the finest level containing a world
+    // point; 0 outside every level.
+    double voxelSizeAt(const Vec3d& world) const;
 
     std::size_t storedBricks() const;
     std::size_t memoryBytes() const;

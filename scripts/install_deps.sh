@@ -8,7 +8,8 @@ packages=(
   libopenvdb-dev libopenvdb-tools libnanovdb-dev libboost-iostreams-dev libblosc-dev
   libtbb-dev libopenexr-dev libimath-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libgtest-dev libbenchmark-dev
-  libembree-dev                   # ray casting for the synthetic scenes (synth/)
+  libembree-dev                   # ray casting: synthetic scenes, inserted objects
+  libtinyobjloader-dev            # OBJ meshes of inserted objects
   libopenblas0-pthread            # fast BLAS for libtorch (the reference BLAS is ~50x slower)
   python3-openvdb python3-numpy   # interop tests: files read and written by python3-openvdb
 )

@@ -4,7 +4,7 @@
 #include "core/errors.h"
 #include "render/contact_sheet.h"
 #include "render/image_io.h"
-#include "synth/random.h"
+#include "core/random.h"
 #include "synth/scene_generator.h"
 #include "synth/scene_json.h"
 #include "synth/scene_render.h"

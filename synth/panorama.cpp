@@ -1,7 +1,7 @@
 #include "synth/panorama.h"
 
 #include "core/errors.h"
-#include "render/envmap_layout.h"
+#include "render/envmap_lookup.h"
 #include "render/image_io.h"
 
 #include <algorithm>
@@ -31,21 +31,7 @@ Panorama::Panorama(const std::string& path) {
             }
 }
 
-Vec3d Panorama::radiance(const Vec3d& direction) const {
-    const EnvmapCoord pc = envmapCoordinate(direction, image_.width, image_.height);
-    const double fx = pc.column - 0.5, fy = std::clamp(pc.row - 0.5, 0.0, image_.height - 1.0);
-    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-    const double wx = fx - x0, wy = fy - y0;
-    const int y1 = std::min(y0 + 1, image_.height - 1);
-    const auto wrap = [&](int x) { return (x % image_.width + image_.width) % image_.width; };
-    Vec3d result(0.0);
-    for (int c = 0; c < 3; ++c) {
-        const double top = (1 - wx) * image_.at(wrap(x0), y0)[c] + wx * image_.at(wrap(x0 + 1), y0)[c];
-        const double bottom = (1 - wx) * image_.at(wrap(x0), y1)[c] + wx * image_.at(wrap(x0 + 1), y1)[c];
-        result[c] = (1 - wy) * top + wy * bottom;
-    }
-    return result;
-}
+Vec3d Panorama::radiance(const Vec3d& direction) const { return sampleEnvmap(image_, direction); }
 
 const Panorama& PanoramaLibrary::get(const std::string& name) {
     auto it = loaded_.find(name);

@@ -1,7 +1,7 @@
 #include "synth/radiance_field.h"
 
 #include "core/errors.h"
-#include "synth/random.h"
+#include "core/random.h"
 
 #include <tbb/parallel_for.h>
 

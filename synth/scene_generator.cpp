@@ -1,7 +1,7 @@
 #include "synth/scene_generator.h"
 
 #include "core/errors.h"
-#include "synth/random.h"
+#include "core/random.h"
 
 #include <cmath>
 

@@ -2,7 +2,7 @@
 
 #include "core/errors.h"
 
-#include "synth/random.h"
+#include "core/random.h"
 #include "synth/scene_json.h"
 #include "tests/synth/synth_test_scenes.h"
 

@@ -1,11 +1,11 @@
-// Small deterministic random numbers for the scene generator and the baker: the same seed
+// Small deterministic random numbers (scene generator, baker, object insertion): the same seed
 // gives the same scene on every machine and thread count (std distributions are not
 // specified bit-exactly across standard libraries, so we do not use them).
 #pragma once
 
 #include <cstdint>
 
-namespace lh::synth {
+namespace lh {
 
 // SplitMix64: a full-period 64-bit generator, good enough for sampling and fast to seed.
 class Random {
@@ -32,4 +32,4 @@ inline uint64_t mixSeed(uint64_t seed, uint64_t index) {
     return r.next();
 }
 
-}  // namespace lh::synth
+}  // namespace lh

@@ -1,0 +1,59 @@
+# Command-line tests of `lighthouse insert` (included by CMakeLists.txt). The photo is the
+# fixture volume's own view from its reference camera.
+
+lighthouse_cli_ok(insert_photo
+  PNG photo.png
+  ARGS render-view example.vdb --cameras cameras.json -o photo.png)
+set_tests_properties(cli.ok.insert_photo PROPERTIES FIXTURES_SETUP lighthouse_insert_photo)
+
+set(LH_INSERT_BASE --volume example.vdb --image photo.png --cameras cameras.json)
+lighthouse_cli_ok(insert_mirror_sphere
+  PNG ins_mirror.png
+  ARGS insert ${LH_INSERT_BASE} --object sphere --at 0,0.5,2.5 --scale 0.2 -o ins_mirror.png)
+lighthouse_cli_ok(insert_three_objects_single_envmap
+  EXR ins_single.exr
+  PNG ins_single.png
+  ARGS insert ${LH_INSERT_BASE} --object sphere --at 0,0.5,2.5 --object cube --at 0.5,0.5,2.5
+       --object torus --at -0.5,0.5,2.5 --scale 0.15 --material glossy:0.3 --samples 4
+       --single-envmap --png -o ins_single.exr)
+lighthouse_cli_ok(insert_along_a_path
+  PNG ins_path_000.png ins_path_002.png ins_path_sheet.png ins_path_epipolar.png
+  ARGS insert ${LH_INSERT_BASE} --object sphere --at 0,0,1 --scale 0.1 --path points.txt
+       -o ins_path.png)
+foreach(t insert_mirror_sphere insert_three_objects_single_envmap insert_along_a_path)
+  set_tests_properties(cli.ok.${t} PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_insert_photo")
+endforeach()
+
+lighthouse_cli_error(insert_image_camera_mismatch
+  EXPECT "image is 320x240 but the camera is 64x48"
+  ABSENT ins_bad1.png
+  ARGS insert --volume example.vdb --image photo.png --cameras cameras_ok.json --object sphere
+       --at 0,0,1 -o ins_bad1.png)
+lighthouse_cli_error(insert_unknown_material
+  EXPECT "material 'gold'"
+  ABSENT ins_bad2.png
+  ARGS insert ${LH_INSERT_BASE} --object sphere --at 0,0,1 --material gold -o ins_bad2.png)
+lighthouse_cli_error(insert_positions_per_object
+  EXPECT "each --object needs its own --at"
+  ABSENT ins_bad3.png
+  ARGS insert ${LH_INSERT_BASE} --object sphere --object cube --at 0,0,1 -o ins_bad3.png)
+lighthouse_cli_error(insert_unknown_object
+  EXPECT "unknown built-in object 'teapot'"
+  ABSENT ins_bad4.png
+  ARGS insert ${LH_INSERT_BASE} --object teapot --at 0,0,1 -o ins_bad4.png)
+lighthouse_cli_error(insert_missing_mesh_file
+  EXPECT "mesh file 'no_such_mesh[.]obj' does not exist"
+  ABSENT ins_bad5.png
+  ARGS insert ${LH_INSERT_BASE} --object no_such_mesh.obj --at 0,0,1 -o ins_bad5.png)
+lighthouse_cli_error(insert_bad_output_format
+  EXPECT "must end in [.]exr or [.]png"
+  ABSENT ins_bad6.bmp
+  ARGS insert ${LH_INSERT_BASE} --object sphere --at 0,0,1 -o ins_bad6.bmp)
+lighthouse_cli_error(insert_negative_scale
+  EXPECT "--scale must be a positive number"
+  ABSENT ins_bad7.png
+  ARGS insert ${LH_INSERT_BASE} --object sphere --at 0,0,1 --scale -1 -o ins_bad7.png)
+foreach(t insert_image_camera_mismatch insert_unknown_material insert_positions_per_object
+          insert_unknown_object insert_missing_mesh_file insert_bad_output_format insert_negative_scale)
+  set_tests_properties(cli.error.${t} PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_insert_photo")
+endforeach()
