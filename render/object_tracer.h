@@ -2,13 +2,11 @@
 // interpolated from the vertex normals.
 #pragma once
 
+#include "render/embree_scene.h"
 #include "render/mesh.h"
 
 #include <limits>
 #include <vector>
-
-struct RTCDeviceTy;
-struct RTCSceneTy;
 
 namespace lh {
 
@@ -25,17 +23,13 @@ class ObjectTracer {
 public:
     // Meshes in world coordinates; object i is meshes[i]. The meshes must outlive the tracer.
     explicit ObjectTracer(const std::vector<TriangleMesh>& meshes);
-    ~ObjectTracer();
-    ObjectTracer(const ObjectTracer&) = delete;
-    ObjectTracer& operator=(const ObjectTracer&) = delete;
 
     ObjectHit intersect(const Vec3d& origin, const Vec3d& dir, double tMin = 1e-5,
                         double tMax = std::numeric_limits<double>::infinity()) const;
 
 private:
     const std::vector<TriangleMesh>& meshes_;
-    RTCDeviceTy* device_ = nullptr;
-    RTCSceneTy* scene_ = nullptr;
+    EmbreeScene scene_;
 };
 
 }  // namespace lh

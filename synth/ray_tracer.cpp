@@ -1,9 +1,5 @@
 #include "synth/ray_tracer.h"
 
-#include "core/errors.h"
-
-#include <embree3/rtcore.h>
-
 #include <cmath>
 #include <vector>
 
@@ -12,12 +8,9 @@ namespace lh::synth {
 namespace {
 
 struct Mesh {
-    std::vector<float> vertices;      // x, y, z per vertex, world frame
-    std::vector<unsigned> triangles;  // 3 indices per triangle
-    void vertex(const Vec3d& p) {
-        vertices.insert(vertices.end(), {float(p.x()), float(p.y()), float(p.z())});
-    }
-    unsigned count() const { return unsigned(vertices.size() / 3); }
+    std::vector<Vec3d> vertices;      // world frame
+    std::vector<uint32_t> triangles;  // 3 indices per triangle
+    void vertex(const Vec3d& p) { vertices.push_back(p); }
     void quad(unsigned a, unsigned b, unsigned c, unsigned d) {
         triangles.insert(triangles.end(), {a, b, c, a, c, d});
     }
@@ -80,78 +73,27 @@ Mesh triangulate(const Primitive& p) {
 }  // namespace
 
 RayTracer::RayTracer(const Scene& scene) : scene_(scene) {
-    device_ = rtcNewDevice("threads=0");
-    if (!device_) throw Error("Embree could not create a device");
-    rtcScene_ = rtcNewScene(device_);
     for (std::size_t i = 0; i < scene.primitives.size(); ++i) {
         const Mesh mesh = triangulate(scene.primitives[i]);
-        if (mesh.triangles.empty()) continue;
-        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.count()));
-        std::copy(mesh.vertices.begin(), mesh.vertices.end(), v);
-        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-            geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-            mesh.triangles.size() / 3));
-        std::copy(mesh.triangles.begin(), mesh.triangles.end(), t);
-        rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(rtcScene_, geom, unsigned(i));  // geometry ID = primitive index
-        rtcReleaseGeometry(geom);
+        embree_.addMesh(unsigned(i), mesh.vertices, mesh.triangles);  // geometry id = primitive
         triangles_ += mesh.triangles.size() / 3;
     }
-    rtcCommitScene(rtcScene_);
-}
-
-RayTracer::~RayTracer() {
-    if (rtcScene_) rtcReleaseScene(rtcScene_);
-    if (device_) rtcReleaseDevice(device_);
+    embree_.commit();
 }
 
 RayHit RayTracer::intersect(const Vec3d& origin, const Vec3d& dir, double tMin, double tMax) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray.org_x = float(origin.x());
-    rh.ray.org_y = float(origin.y());
-    rh.ray.org_z = float(origin.z());
-    rh.ray.dir_x = float(dir.x());
-    rh.ray.dir_y = float(dir.y());
-    rh.ray.dir_z = float(dir.z());
-    rh.ray.tnear = float(tMin);
-    rh.ray.tfar = std::isfinite(tMax) ? float(tMax) : std::numeric_limits<float>::infinity();
-    rh.ray.mask = 0xFFFFFFFF;
-    rh.ray.flags = 0;
-    rh.ray.time = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(rtcScene_, &context, &rh);
+    const EmbreeHit e = embree_.intersect(origin, dir, tMin, tMax);
     RayHit hit;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    if (!e.hit) return hit;
     hit.hit = true;
-    hit.t = rh.ray.tfar;
-    const int prim = int(rh.hit.geomID);
+    hit.t = e.t;
+    const int prim = int(e.geometry);
     hit.point = nearestSurfacePoint(scene_.primitives[prim], prim, origin + dir * hit.t);
     return hit;
 }
 
 bool RayTracer::occluded(const Vec3d& origin, const Vec3d& dir, double tMin, double tMax) const {
-    if (!(tMax > tMin)) return false;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay ray;
-    ray.org_x = float(origin.x());
-    ray.org_y = float(origin.y());
-    ray.org_z = float(origin.z());
-    ray.dir_x = float(dir.x());
-    ray.dir_y = float(dir.y());
-    ray.dir_z = float(dir.z());
-    ray.tnear = float(tMin);
-    ray.tfar = float(tMax);
-    ray.mask = 0xFFFFFFFF;
-    ray.flags = 0;
-    ray.time = 0;
-    rtcOccluded1(rtcScene_, &context, &ray);
-    return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
+    return embree_.occluded(origin, dir, tMin, tMax);
 }
 
 }  // namespace lh::synth

@@ -3,12 +3,10 @@
 // surface so normals, face parameters and textures are exact.
 #pragma once
 
+#include "render/embree_scene.h"
 #include "synth/scene.h"
 
 #include <limits>
-
-struct RTCDeviceTy;
-struct RTCSceneTy;
 
 namespace lh::synth {
 
@@ -21,9 +19,6 @@ struct RayHit {
 class RayTracer {
 public:
     explicit RayTracer(const Scene& scene);
-    ~RayTracer();
-    RayTracer(const RayTracer&) = delete;
-    RayTracer& operator=(const RayTracer&) = delete;
 
     // First hit along a unit direction within (tMin, tMax). Thread-safe.
     RayHit intersect(const Vec3d& origin, const Vec3d& dir, double tMin = 1e-4,
@@ -35,8 +30,7 @@ public:
 
 private:
     const Scene& scene_;
-    RTCDeviceTy* device_ = nullptr;
-    RTCSceneTy* rtcScene_ = nullptr;
+    EmbreeScene embree_;
     std::size_t triangles_ = 0;
 };
 
