@@ -2,7 +2,7 @@
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 
-#include <openvdb/tools/Statistics.h>
+#include <openvdb/tools/Count.h>
 
 #include <cstdio>
 #include <iostream>
@@ -35,7 +35,11 @@ void printInfo(const InfoOptions& o) {
         const auto dim = l.domain.dim();
         const Vec3d voxel = l.transform().voxelSize();
         float dMin = 0, dMax = 0;
-        if (l.density->activeVoxelCount() > 0) l.density->evalMinMax(dMin, dMax);
+        if (l.density->activeVoxelCount() > 0) {
+            const auto range = openvdb::tools::minMax(l.density->tree());
+            dMin = range.min();
+            dMax = range.max();
+        }
         // Largest colour component over active voxels.
         float cMax = 0.f;
         for (auto it = l.color->cbeginValueOn(); it; ++it)

@@ -15,5 +15,6 @@ void addCompareCommand(CLI::App& app);
 void addSynthCommand(CLI::App& app);
 void addOracleCommand(CLI::App& app);
 void addInsertCommand(CLI::App& app);
+void addBenchEnvmapCommand(CLI::App& app);
 
 }  // namespace lh::cli

@@ -57,3 +57,9 @@ foreach(t insert_image_camera_mismatch insert_unknown_material insert_positions_
           insert_unknown_object insert_missing_mesh_file insert_bad_output_format insert_negative_scale)
   set_tests_properties(cli.error.${t} PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_insert_photo")
 endforeach()
+
+# The speed-against-error report on the fixture volume (tiny, so that it stays fast).
+lighthouse_cli_ok(bench_envmap_report
+  STDOUT "paper-spheres" "openvdb-fixed-step" "ours"
+  FILES bench_out/speed_error.csv bench_out/speed_error.md bench_out/speed_error.svg
+  ARGS bench-envmap example.vdb --points 1 --size 16x8 --out bench_out)

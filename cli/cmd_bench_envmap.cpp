@@ -1,0 +1,46 @@
+// `lighthouse bench-envmap FILE.vdb [--points 8] [--out DIR]`: speed against error of our
+// marcher, a fixed-step OpenVDB-sampler marcher and the paper's concentric spheres.
+#include "cli/cli_common.h"
+#include "cli/commands.h"
+#include "core/errors.h"
+#include "render/speed_error.h"
+
+#include <fstream>
+#include <iostream>
+
+namespace lh::cli {
+
+namespace {
+
+struct BenchOptions {
+    std::string file, out = "out/speed_error", size = "240x120";
+    SpeedErrorOptions bench;
+};
+
+void runBench(BenchOptions& o) {
+    parseSize(o.size, o.bench.width, o.bench.height);
+    EnvmapOptions{o.bench.width, o.bench.height, MarchOptions{}}.validate();
+    if (o.bench.points < 1 || o.bench.points > 1000) throw InputError("--points must be in [1, 1000]");
+    const LightingVolume volume = loadVolumeForCli(o.file, false);
+    const auto rows = measureSpeedAgainstError(volume, o.bench, [](const std::string& s) { std::cerr << "bench: " << s << "\n"; });
+    writeSpeedErrorReport(rows, o.out);
+    std::ifstream table(o.out + "/speed_error.md");
+    std::cout << table.rdbuf();
+    std::cerr << "report (csv, md, svg plot) written to " << o.out << "/\n";
+}
+
+}  // namespace
+
+void addBenchEnvmapCommand(CLI::App& app) {
+    auto o = std::make_shared<BenchOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "bench-envmap", "Measure envmap speed against error: ours, OpenVDB fixed-step, the paper's spheres");
+    cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
+    cmd->add_option("--points", o->bench.points, "Random query points in empty space")->capture_default_str();
+    cmd->add_option("--size", o->size, "Envmap size WxH")->capture_default_str();
+    cmd->add_option("--seed", o->bench.seed, "Seed of the query points")->capture_default_str();
+    cmd->add_option("--out", o->out, "Directory for speed_error.csv/.md/.svg")->capture_default_str();
+    cmd->callback([o] { runBench(*o); });
+}
+
+}  // namespace lh::cli
