@@ -16,5 +16,6 @@ void addSynthCommand(CLI::App& app);
 void addOracleCommand(CLI::App& app);
 void addInsertCommand(CLI::App& app);
 void addBenchEnvmapCommand(CLI::App& app);
+void addEditCommand(CLI::App& app);
 
 }  // namespace lh::cli

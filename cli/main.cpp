@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     lh::cli::addSynthCommand(app);
     lh::cli::addOracleCommand(app);
     lh::cli::addInsertCommand(app);
+    lh::cli::addEditCommand(app);
     lh::cli::addBenchEnvmapCommand(app);
 
     std::unique_ptr<tbb::global_control> threadLimit;

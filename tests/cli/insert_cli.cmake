@@ -63,3 +63,25 @@ lighthouse_cli_ok(bench_envmap_report
   STDOUT "paper-spheres" "openvdb-fixed-step" "ours"
   FILES bench_out/speed_error.csv bench_out/speed_error.md bench_out/speed_error.svg
   ARGS bench-envmap example.vdb --points 1 --size 16x8 --out bench_out)
+
+# `lighthouse edit`: an emissive box added at +x shows up in a re-rendered envmap file.
+lighthouse_cli_ok(edit_add_box_and_scale
+  FILES edited.vdb
+  ARGS edit example.vdb --add-box 1.0,-0.2,-0.2,1.4,0.2,0.2:5,0,0 --exposure 2 --clamp-radiance 100
+       -o edited.vdb)
+lighthouse_cli_ok(edit_then_render
+  EXR edited_env.exr
+  ARGS render-envmap edited.vdb --at 0,0,0.5 --size 32x16 -o edited_env.exr)
+set_tests_properties(cli.ok.edit_then_render PROPERTIES DEPENDS cli.ok.edit_add_box_and_scale)
+lighthouse_cli_error(edit_nothing
+  EXPECT "no edit given"
+  ABSENT edited_none.vdb
+  ARGS edit example.vdb -o edited_none.vdb)
+lighthouse_cli_error(edit_bad_box
+  EXPECT "--add-box.*expected 6 numbers"
+  ABSENT edited_bad.vdb
+  ARGS edit example.vdb --add-box 1,2,3:1,1,1 -o edited_bad.vdb)
+lighthouse_cli_error(edit_inverted_box
+  EXPECT "min < max"
+  ABSENT edited_bad2.vdb
+  ARGS edit example.vdb --erase-box 1,1,1,0,0,0 -o edited_bad2.vdb)
