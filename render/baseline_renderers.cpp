@@ -19,11 +19,6 @@ struct Sphere {
     int level;
 };
 
-bool inside(const RenderLevel& level, const Vec3d& q) {
-    return q.x() >= level.domainLo.x() && q.x() <= level.domainHi.x() && q.y() >= level.domainLo.y() &&
-           q.y() <= level.domainHi.y() && q.z() >= level.domainLo.z() && q.z() <= level.domainHi.z();
-}
-
 }  // namespace
 
 ImageRGB renderEnvmapConcentricSpheres(const RenderVolume& volume, const Vec3d& position, int width,
@@ -59,10 +54,10 @@ ImageRGB renderEnvmapConcentricSpheres(const RenderVolume& volume, const Vec3d& 
                     const Vec3d p = position + d * s.radius;
                     const RenderLevel& level = volume.levels[s.level];
                     const Vec3d q = level.toIndex(p);
-                    if (!inside(level, q)) continue;
+                    if (!level.containsIndex(q)) continue;
                     bool finer = false;  // coarser levels are zeroed where a finer one exists
                     for (std::size_t k = s.level + 1; k < volume.levels.size() && !finer; ++k)
-                        finer = inside(volume.levels[k], volume.levels[k].toIndex(p));
+                        finer = volume.levels[k].containsIndex(volume.levels[k].toIndex(p));
                     if (finer) continue;
                     const RenderSample m = level.sample(q);
                     if (m.sigma <= 0) continue;

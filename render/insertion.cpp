@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "core/random.h"
+#include "core/sampling.h"
 #include "render/envmap.h"
 #include "render/envmap_lookup.h"
 #include "render/object_tracer.h"
@@ -101,17 +102,12 @@ public:
         // rays do not pick up the surface's own emission on their way out.
         const double voxel = std::max(0.01, volume_.voxelSizeAt(x));
         const Vec3d y = x - dir * (1.5 * voxel) + n * (0.5 * voxel);
-        Vec3d t, b;
-        const Vec3d helper = std::abs(n.x()) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-        t = n.cross(helper).unit();
-        b = n.cross(t);
         const int k = options_.shadowRays, strata = std::max(1, int(std::sqrt(double(k))));
         SurfaceLight result;
         for (int s = 0; s < k; ++s) {
             double u1 = rng.uniform(), u2 = rng.uniform();
             if (s < strata * strata) u1 = (s / strata + u1) / strata, u2 = (s % strata + u2) / strata;
-            const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-            const Vec3d d = (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(1 - u1)).unit();
+            const Vec3d d = cosineDirection(n, u1, u2);
             const RayResult light = marchRay(volume_, y, d, options_.march);
             const Vec3d l(light.radiance[0], light.radiance[1], light.radiance[2]);
             result.incident += l / double(k);  // cosine-weighted: E / pi = mean radiance

@@ -1,6 +1,7 @@
 #include "render/material.h"
 
 #include "core/errors.h"
+#include "core/sampling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,12 +10,6 @@
 namespace lh {
 
 namespace {
-
-void tangentFrame(const Vec3d& n, Vec3d& t, Vec3d& b) {
-    const Vec3d helper = std::abs(n.x()) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-    t = n.cross(helper).unit();
-    b = n.cross(t);
-}
 
 Vec3d reflect(const Vec3d& d, const Vec3d& n) { return d - n * (2 * d.dot(n)); }
 
@@ -65,20 +60,18 @@ Material Material::parse(const std::string& text) {
 }
 
 MaterialSample sampleMaterial(const Material& m, const Vec3d& n, const Vec3d& incoming, double u1, double u2) {
-    Vec3d t, b;
-    tangentFrame(n, t, b);
     switch (m.kind) {
         case Material::Kind::Mirror:
             return {reflect(incoming, n).unit(), m.albedo};
         case Material::Kind::Diffuse: {
             // Cosine-weighted: BRDF * cos / pdf = albedo.
-            const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-            const Vec3d d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1));
-            return {d.unit(), m.albedo};
+            return {cosineDirection(n, u1, u2), m.albedo};
         }
         case Material::Kind::Glossy: {
             // GGX normal sampling: pdf(h) = D(h) cos(h); for reflection the weight is
             // F G (v.h) / ((n.v)(n.h)) with F = tint (a white metal).
+            Vec3d t, b;
+            tangentFrame(n, t, b);
             const double alpha = m.roughness * m.roughness;
             const double tan2 = alpha * alpha * u1 / std::max(1e-12, 1 - u1);
             const double cosH = 1 / std::sqrt(1 + tan2), sinH = std::sqrt(std::max(0.0, 1 - cosH * cosH));

@@ -73,9 +73,7 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
         for (int k = int(coarser.size()) - 1; k >= 0; --k) {
             const RenderLevel& parent = coarser[k];
             const Vec3d q = parent.toIndex(world);
-            if (q.x() >= parent.domainLo.x() && q.x() <= parent.domainHi.x() &&
-                q.y() >= parent.domainLo.y() && q.y() <= parent.domainHi.y() &&
-                q.z() >= parent.domainLo.z() && q.z() <= parent.domainHi.z()) {
+            if (parent.containsIndex(q)) {
                 RenderSample s = parent.sample(q);
                 v[0] = s.sigma;
                 std::copy(s.emission, s.emission + 3, v + 1);
@@ -252,21 +250,14 @@ RenderSample RenderVolume::sampleWorld(const Vec3d& world) const {
     for (int k = int(levels.size()) - 1; k >= 0; --k) {
         const RenderLevel& level = levels[k];
         const Vec3d q = level.toIndex(world);
-        if (q.x() >= level.domainLo.x() && q.x() <= level.domainHi.x() &&
-            q.y() >= level.domainLo.y() && q.y() <= level.domainHi.y() &&
-            q.z() >= level.domainLo.z() && q.z() <= level.domainHi.z())
-            return level.sample(q);
+        if (level.containsIndex(q)) return level.sample(q);
     }
     return {0.f, {0.f, 0.f, 0.f}};
 }
 
 double RenderVolume::voxelSizeAt(const Vec3d& world) const {
     for (int k = int(levels.size()) - 1; k >= 0; --k) {
-        const RenderLevel& level = levels[k];
-        const Vec3d q = level.toIndex(world);
-        if (q.x() >= level.domainLo.x() && q.x() <= level.domainHi.x() && q.y() >= level.domainLo.y() &&
-            q.y() <= level.domainHi.y() && q.z() >= level.domainLo.z() && q.z() <= level.domainHi.z())
-            return std::cbrt(level.voxelVolume);
+        if (levels[k].containsIndex(levels[k].toIndex(world))) return std::cbrt(levels[k].voxelVolume);
     }
     return 0.0;
 }

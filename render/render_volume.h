@@ -39,6 +39,11 @@ public:
     Vec3d toIndex(const Vec3d& world) const { return worldToIndex * world + indexOffset; }
     Vec3d directionToIndex(const Vec3d& dir) const { return worldToIndex * dir; }
 
+    // True if continuous index coordinates lie inside the domain's outer voxel faces.
+    bool containsIndex(const Vec3d& q) const {
+        return q.x() >= domainLo.x() && q.x() <= domainHi.x() && q.y() >= domainLo.y() &&
+               q.y() <= domainHi.y() && q.z() >= domainLo.z() && q.z() <= domainHi.z();
+    }
     // Trilinear sample at continuous index coordinates. Valid inside [domainLo, domainHi].
     RenderSample sample(const Vec3d& index) const;
     // True if the brick cell at brick coordinates (bx, by, bz) holds density.

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "core/random.h"
+#include "core/sampling.h"
 
 #include <tbb/parallel_for.h>
 
@@ -14,12 +15,6 @@ namespace {
 
 constexpr double kSurfaceOffset = 1e-3;  // metres: ray origins leave the surface by this much
 constexpr double kMinDistanceSqr = 1e-3; // m^2: caps 1/d^2 for texels touching a lamp
-
-void tangentFrame(const Vec3d& n, Vec3d& t, Vec3d& b) {
-    const Vec3d helper = std::abs(n.x()) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);
-    t = n.cross(helper).unit();
-    b = n.cross(t);
-}
 
 // A gather ray's hit, kept so that every bounce iteration re-uses it.
 struct GatherHit {
@@ -197,7 +192,7 @@ void RadianceField::bake(const RayTracer& tracer, const BakeOptions& options) {
                         le = L.radiance;
                     }
                     const Vec3d w = y - x;
-                    const double d2 = std::max(w.lengthSqr(), kMinDistanceSqr), d = std::sqrt(d2);
+                    const double d2 = std::max(w.lengthSqr(), kMinDistanceSqr);
                     const Vec3d wd = w / w.length();
                     const double cosX = n.dot(wd), cosY = -ny.dot(wd);
                     if (cosX <= 0 || cosY <= 0) continue;
@@ -210,14 +205,10 @@ void RadianceField::bake(const RayTracer& tracer, const BakeOptions& options) {
 
             // Gather rays: stratified cosine-weighted directions. Hits on emitters add their
             // MIS share of direct light; hits on other surfaces are kept for the bounces.
-            Vec3d tu, tv;
-            tangentFrame(n, tu, tv);
             for (int s = 0; s < gather; ++s) {
                 const double u1 = (s / strata + rng.uniform()) / strata;
                 const double u2 = (s % strata + rng.uniform()) / strata;
-                const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-                const Vec3d dir = (tu * (r * std::cos(phi)) + tv * (r * std::sin(phi)) +
-                                   n * std::sqrt(std::max(0.0, 1 - u1))).unit();
+                const Vec3d dir = cosineDirection(n, u1, u2);
                 const RayHit h = tracer.intersect(x, dir);
                 GatherHit& g = hits[t * gather + s];
                 if (!h.hit) continue;
