@@ -17,5 +17,7 @@ void addOracleCommand(CLI::App& app);
 void addInsertCommand(CLI::App& app);
 void addBenchEnvmapCommand(CLI::App& app);
 void addEditCommand(CLI::App& app);
+void addExportCommand(CLI::App& app);
+void addImportCommand(CLI::App& app);
 
 }  // namespace lh::cli

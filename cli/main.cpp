@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
     lh::cli::addOracleCommand(app);
     lh::cli::addInsertCommand(app);
     lh::cli::addEditCommand(app);
+    lh::cli::addExportCommand(app);
+    lh::cli::addImportCommand(app);
     lh::cli::addBenchEnvmapCommand(app);
 
     std::unique_ptr<tbb::global_control> threadLimit;

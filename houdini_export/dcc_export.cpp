@@ -1,0 +1,238 @@
+#include "houdini_export/dcc_export.h"
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "houdini_export/shells.h"
+
+#include <nlohmann/json.hpp>
+#include <openvdb/io/File.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace fs = std::filesystem;
+
+namespace lh {
+
+void clampForDcc(float& sigma, openvdb::Vec3s& color, float maxValue, bool& sigmaChanged,
+                 bool& colorChanged) {
+    sigmaChanged = colorChanged = false;
+    for (int c = 0; c < 3; ++c) {
+        float v = color[c];
+        if (!(v >= 0.f)) v = 0.f;  // NaN or negative: not a radiance
+        if (v > maxValue) v = maxValue;
+        if (v != color[c]) colorChanged = true, color[c] = v;
+    }
+    float s = sigma;
+    if (!(s >= 0.f)) s = 0.f;
+    const float peak = std::max({1.f, color[0], color[1], color[2]});
+    const float sigmaMax = maxValue / peak;
+    if (s > sigmaMax) s = sigmaMax;
+    if (s != sigma) sigmaChanged = true, sigma = s;
+}
+
+namespace {
+
+openvdb::Mat4d rotationAsMat4(const Mat3d& r) {
+    // OpenVDB multiplies row vectors from the left (v' = v M), so a column-vector rotation R
+    // enters as its transpose.
+    openvdb::Mat4d m = openvdb::Mat4d::identity();
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m[i][j] = r[j][i];
+    return m;
+}
+
+struct LevelGrids {
+    openvdb::FloatGrid::Ptr density;
+    openvdb::FloatGrid::Ptr emissionChannel[3];  // Blender
+    openvdb::Vec3SGrid::Ptr emission, color;      // emission: Houdini
+    openvdb::GridCPtrVec all() const {
+        openvdb::GridCPtrVec v{density};
+        if (emission) v.push_back(emission);
+        for (const auto& g : emissionChannel)
+            if (g) v.push_back(g);
+        v.push_back(color);
+        return v;
+    }
+};
+
+LevelGrids convertShell(const VolumeLevel& shell, int k, const DccConvention& conv,
+                        const DccExportOptions& options, DccClampReport& clamp) {
+    LevelGrids g;
+    g.density = openvdb::FloatGrid::create(0.f);
+    if (conv.splitEmission)
+        for (auto& ch : g.emissionChannel) ch = openvdb::FloatGrid::create(0.f);
+    else
+        g.emission = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    g.color = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    auto xf = shell.transform().copy();
+    if (conv.indexShift != 0.0) xf->preTranslate(Vec3d(conv.indexShift));
+    xf->postMult(rotationAsMat4(conv.worldToDcc));
+    const double voxel = std::cbrt(shell.voxelVolume());  // metres
+    auto d = g.density->getAccessor();
+    auto c = g.color->getAccessor();
+    auto srcColor = shell.color->getConstAccessor();
+    for (auto it = shell.density->cbeginValueOn(); it; ++it) {
+        float sigma = *it;
+        openvdb::Vec3s rgb = srcColor.getValue(it.getCoord());
+        const float before = sigma;
+        bool sigmaChanged, colorChanged;
+        clampForDcc(sigma, rgb, options.maxValue, sigmaChanged, colorChanged);
+        if (sigmaChanged && before > 0 && std::isfinite(before)) {
+            ++clamp.densityClamped;
+            if (double(sigma) * voxel < 10.0 && double(before) * voxel >= 10.0) ++clamp.nowTranslucent;
+        } else if (sigmaChanged) {
+            ++clamp.densityClamped;
+        }
+        if (colorChanged) ++clamp.radianceClamped;
+        if (!(sigma > 0.f)) continue;  // empty space stays inactive
+        d.setValueOn(it.getCoord(), sigma);
+        if (g.emission) g.emission->tree().setValueOn(it.getCoord(), rgb * sigma);
+        for (int ch = 0; ch < 3; ++ch)
+            if (g.emissionChannel[ch]) g.emissionChannel[ch]->tree().setValueOn(it.getCoord(), rgb[ch] * sigma);
+        c.setValueOn(it.getCoord(), rgb);
+    }
+    const openvdb::Vec3i lo = shell.domain.min().asVec3i(), hi = shell.domain.max().asVec3i();
+    for (const auto& constGrid : g.all()) {
+        auto grid = openvdb::ConstPtrCast<openvdb::GridBase>(constGrid);
+        grid->setTransform(xf->copy());
+        grid->insertMeta("level", openvdb::Int32Metadata(k));
+        // The level's region in its own index space (unchanged by the axis rotation).
+        grid->insertMeta("lighthouse_domain_min", openvdb::Vec3IMetadata(lo));
+        grid->insertMeta("lighthouse_domain_max", openvdb::Vec3IMetadata(hi));
+    }
+    g.density->setName(kDccDensityGrid);
+    g.density->setGridClass(openvdb::GRID_FOG_VOLUME);
+    if (g.emission) {
+        g.emission->setName(kDccEmissionGrid);
+        g.emission->setVectorType(openvdb::VEC_INVARIANT);  // Houdini: "Tuple/Color", not a direction
+    }
+    for (int ch = 0; ch < 3; ++ch)
+        if (g.emissionChannel[ch]) g.emissionChannel[ch]->setName(kDccEmissionChannelGrids[ch]);
+    g.color->setName(conv.colorGrid);
+    g.color->setVectorType(openvdb::VEC_INVARIANT);
+    return g;
+}
+
+void writeLevelFile(const std::string& path, const LevelGrids& g, int k, int levels,
+                    const DccConvention& conv) {
+    openvdb::MetaMap meta;
+    meta.insertMeta("lighthouse_export_for", openvdb::StringMetadata(conv.name));
+    meta.insertMeta("lighthouse_export_version", openvdb::Int32Metadata(kDccExportVersion));
+    meta.insertMeta("lighthouse_export_level", openvdb::Int32Metadata(k));
+    meta.insertMeta("lighthouse_export_levels", openvdb::Int32Metadata(levels));
+    meta.insertMeta("lighthouse_axes", openvdb::StringMetadata(conv.axesText));
+    try {
+        openvdb::io::File file(path);
+        file.setCompression(openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK);
+        file.write(g.all(), meta);
+        file.close();
+    } catch (const openvdb::Exception& e) {
+        throw FileError("cannot write '" + path + "': " + e.what());
+    }
+}
+
+bool isExportDirectory(const fs::path& dir) {
+    return fs::is_directory(dir) && fs::is_regular_file(dir / kDccManifestName);
+}
+
+// A fresh, unused directory name beside `finalDir`.
+fs::path temporaryDirectoryBeside(const fs::path& finalDir, const char* tag) {
+    std::random_device rd;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        fs::path p = finalDir.parent_path() /
+                     ("." + finalDir.filename().string() + "." + tag + std::to_string(rd() % 1000000));
+        if (!fs::exists(p)) return p;
+    }
+    throw FileError("cannot find a free temporary name beside '" + finalDir.string() + "'");
+}
+
+}  // namespace
+
+DccExportReport exportForDcc(const LightingVolume& volume, const std::string& outDir,
+                             const DccExportOptions& options) {
+    volume.validate();
+    if (!(options.maxValue > 0) || !std::isfinite(options.maxValue))
+        throw InputError("export value limit must be finite and positive");
+    const DccConvention conv = dccConvention(options.dcc);
+    fs::path finalDir = fs::path(outDir);
+    if (finalDir.filename().empty()) finalDir = finalDir.parent_path();  // "out/" -> "out"
+    const fs::path parent = finalDir.parent_path().empty() ? fs::path(".") : finalDir.parent_path();
+    if (!fs::is_directory(parent))
+        throw FileError("cannot write '" + outDir + "': directory '" + parent.string() + "' does not exist");
+    if (fs::exists(finalDir) && !isExportDirectory(finalDir))
+        throw FileError("'" + outDir + "' exists and is not a lighthouse export (no " + kDccManifestName +
+                        "); refusing to overwrite it");
+
+    DccExportReport report;
+    const std::vector<VolumeLevel> shells = makeShells(volume);
+    const fs::path tmp = temporaryDirectoryBeside(parent / finalDir.filename(), "tmp");
+    nlohmann::json manifest;
+    try {
+        fs::create_directory(tmp);
+        manifest["lighthouse_export"] = kDccExportVersion;
+        manifest["for"] = conv.name;
+        manifest["axes"] = conv.axesText;
+        nlohmann::json rot = nlohmann::json::array();
+        for (int i = 0; i < 3; ++i) rot.push_back({conv.worldToDcc[i][0], conv.worldToDcc[i][1], conv.worldToDcc[i][2]});
+        manifest["world_to_dcc"] = rot;
+        manifest["index_shift"] = conv.indexShift;
+        manifest["units"] = "scene units (metres); density per unit length";
+        manifest["grids"] = {{"density", kDccDensityGrid},
+                             {"emission", conv.splitEmission ? nlohmann::json(kDccEmissionChannelGrids)
+                                                             : nlohmann::json(kDccEmissionGrid)},
+                             {"color", conv.colorGrid}};
+        manifest["max_value"] = options.maxValue;
+        if (volume.layout) manifest["layout"] = nlohmann::json::parse(volume.layout->toJson());
+        if (volume.refCamera) manifest["ref_camera"] = nlohmann::json::parse(cameraToJson(*volume.refCamera));
+        nlohmann::json levels = nlohmann::json::array();
+        for (std::size_t k = 0; k < shells.size(); ++k) {
+            const LevelGrids g = convertShell(shells[k], int(k), conv, options, report.clamp);
+            const std::string name = dccLevelFileName(int(k));
+            writeLevelFile((tmp / name).string(), g, int(k), int(shells.size()), conv);
+            report.files.push_back((finalDir / name).string());
+            report.activeVoxels.push_back(g.density->activeVoxelCount());
+            levels.push_back({{"file", name},
+                              {"voxel_size", std::cbrt(shells[k].voxelVolume())},
+                              {"active_voxels", g.density->activeVoxelCount()}});
+        }
+        manifest["levels"] = levels;
+        manifest["clamped"] = {{"density_voxels", report.clamp.densityClamped},
+                               {"radiance_voxels", report.clamp.radianceClamped},
+                               {"now_translucent_voxels", report.clamp.nowTranslucent}};
+        std::ofstream(tmp / kDccManifestName) << manifest.dump(2) << "\n";
+        if (!fs::is_regular_file(tmp / kDccManifestName) || fs::file_size(tmp / kDccManifestName) == 0)
+            throw FileError("cannot write '" + (finalDir / kDccManifestName).string() + "'");
+        // Swap in: the old export (if any) moves aside first, then goes.
+        fs::path old;
+        if (fs::exists(finalDir)) {
+            old = temporaryDirectoryBeside(parent / finalDir.filename(), "old");
+            fs::rename(finalDir, old);
+        }
+        fs::rename(tmp, finalDir);
+        if (!old.empty()) fs::remove_all(old);
+    } catch (const fs::filesystem_error& e) {
+        std::error_code ignored;
+        fs::remove_all(tmp, ignored);
+        throw FileError("cannot write export '" + outDir + "': " + e.what());
+    } catch (...) {
+        std::error_code ignored;
+        fs::remove_all(tmp, ignored);
+        throw;
+    }
+    if (report.clamp.changedAnything()) {
+        report.warnings.push_back(
+            "values above " + std::to_string(int(options.maxValue)) +
+            " (half-precision limit) were clamped: density in " + std::to_string(report.clamp.densityClamped) +
+            " voxel(s), radiance in " + std::to_string(report.clamp.radianceClamped) + " voxel(s)" +
+            (report.clamp.nowTranslucent
+                 ? "; " + std::to_string(report.clamp.nowTranslucent) + " opaque voxel(s) became translucent"
+                 : std::string("; opaque voxels stay opaque, so surfaces keep their radiance")));
+    }
+    return report;
+}
+
+}  // namespace lh

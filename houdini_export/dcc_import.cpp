@@ -1,0 +1,277 @@
+#include "houdini_export/dcc_import.h"
+
+#include "core/errors.h"
+#include "houdini_export/shells.h"
+#include "vdb/safe_read.h"
+#include "vdb/volume_io.h"
+
+#include <nlohmann/json.hpp>
+#include <openvdb/io/File.h>
+#include <openvdb/tools/Prune.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+
+namespace fs = std::filesystem;
+
+namespace lh {
+
+namespace {
+
+nlohmann::json readManifest(const fs::path& dir, const DccConvention& conv) {
+    const std::string where = "'" + dir.string() + "'";
+    if (!fs::exists(dir)) throw FileError(where + " does not exist");
+    if (!fs::is_directory(dir))
+        throw FileError(where + " is not an export directory (run 'lighthouse export' first; it writes a directory)");
+    const fs::path path = dir / kDccManifestName;
+    if (!fs::is_regular_file(path))
+        throw FileError(where + " is not a lighthouse export: it has no " + std::string(kDccManifestName));
+    nlohmann::json m;
+    try {
+        std::ifstream in(path);
+        m = nlohmann::json::parse(in);
+    } catch (const std::exception& e) {
+        throw FileError("'" + path.string() + "' is not valid JSON (" + e.what() + ")");
+    }
+    if (!m.is_object() || !m.contains("lighthouse_export") || !m["lighthouse_export"].is_number_integer())
+        throw FileError("'" + path.string() + "' is not a lighthouse export manifest");
+    if (m["lighthouse_export"].get<int>() > kDccExportVersion)
+        throw FileError("'" + path.string() + "' is export version " + std::to_string(m["lighthouse_export"].get<int>()) +
+                        "; this build reads up to " + std::to_string(kDccExportVersion));
+    if (!m.contains("for") || !m["for"].is_string() || m["for"].get<std::string>() != conv.name)
+        throw FileError(where + " was exported for '" + (m.contains("for") && m["for"].is_string() ? m["for"].get<std::string>() : "?") +
+                        "', not for '" + conv.name + "'");
+    if (!m.contains("levels") || !m["levels"].is_array() || m["levels"].empty())
+        throw FileError("'" + path.string() + "' lists no levels");
+    return m;
+}
+
+openvdb::GridPtrVec readGrids(const std::string& path) {
+    if (!fs::is_regular_file(path)) throw FileError("'" + path + "' is missing from the export");
+    probeVdbReadable(path);
+    try {
+        openvdb::io::File file(path);
+        file.open(false);
+        openvdb::GridPtrVec grids = *file.getGrids();
+        file.close();
+        return grids;
+    } catch (const openvdb::Exception& e) {
+        throw FileError("'" + path + "' is not a readable VDB file (" + e.what() + ")");
+    }
+}
+
+template <typename GridT>
+typename GridT::Ptr findGrid(const openvdb::GridPtrVec& grids, const std::string& name, const std::string& path,
+                             const char* expected, bool required) {
+    for (const auto& g : grids) {
+        if (g->getName() != name) continue;
+        auto typed = openvdb::gridPtrCast<GridT>(g);
+        if (!typed)
+            throw FileError("'" + path + "': grid '" + name + "' is " + gridKind(*g) + ", expected " + expected);
+        if (!g->transform().isLinear())
+            throw FileError("'" + path + "': grid '" + name + "' has a non-affine (frustum) transform");
+        return typed;
+    }
+    if (required) throw FileError("'" + path + "' has no grid '" + name + "' (" + expected + ")");
+    return nullptr;
+}
+
+// NaN -> 0, +Inf -> big, negative -> 0; returns how many values changed.
+std::size_t sanitise(float& v, float big) {
+    if (std::isnan(v) || v < 0.f) return v = 0.f, 1;
+    if (std::isinf(v)) return v = big, 1;
+    return 0;
+}
+
+openvdb::CoordBBox storedDomain(const openvdb::GridBase& grid) {
+    auto lo = grid.getMetadata<openvdb::Vec3IMetadata>("lighthouse_domain_min");
+    auto hi = grid.getMetadata<openvdb::Vec3IMetadata>("lighthouse_domain_max");
+    if (lo && hi) return openvdb::CoordBBox(openvdb::Coord(lo->value()), openvdb::Coord(hi->value()));
+    return openvdb::CoordBBox();
+}
+
+openvdb::Mat4d inverseRotationAsMat4(const Mat3d& r) {
+    // Row-vector convention (v' = v M): the inverse rotation R^T enters as (R^T)^T = R.
+    openvdb::Mat4d m = openvdb::Mat4d::identity();
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m[i][j] = r[i][j];
+    return m;
+}
+
+struct LevelRead {
+    VolumeLevel level;
+    std::string path;
+};
+
+LevelRead readLevel(const std::string& path, const DccConvention& conv, std::vector<std::string>& warnings) {
+    const openvdb::GridPtrVec grids = readGrids(path);
+    auto density = findGrid<openvdb::FloatGrid>(grids, kDccDensityGrid, path, "a FloatGrid (extinction density)", true);
+    auto emission = findGrid<openvdb::Vec3SGrid>(grids, kDccEmissionGrid, path, "a Vec3SGrid (sigma * radiance)", false);
+    auto color = findGrid<openvdb::Vec3SGrid>(grids, conv.colorGrid, path, "a Vec3SGrid (linear radiance)", false);
+    // Blender's three float channels, merged into one Vec3SGrid (they are what Cycles rendered).
+    openvdb::FloatGrid::Ptr channel[3];
+    for (int c = 0; c < 3; ++c)
+        channel[c] = findGrid<openvdb::FloatGrid>(grids, kDccEmissionChannelGrids[c], path,
+                                                  "a FloatGrid (sigma * radiance, one channel)", false);
+    if (channel[0] || channel[1] || channel[2]) {
+        if (!(channel[0] && channel[1] && channel[2]))
+            throw FileError("'" + path + "' has only some of emission_r, emission_g, emission_b");
+        emission = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+        emission->setName("emission_r/g/b");
+        for (int c = 0; c < 3; ++c) {
+            if (channel[c]->transform() != density->transform())
+                throw FileError("'" + path + "': grids 'density' and '" + channel[c]->getName() +
+                                "' have different transforms; resample one onto the other");
+            channel[c]->tree().voxelizeActiveTiles();
+            auto acc = emission->getAccessor();
+            for (auto it = channel[c]->cbeginValueOn(); it; ++it) {
+                openvdb::Vec3s v = acc.getValue(it.getCoord());
+                v[c] = *it;
+                acc.setValueOn(it.getCoord(), v);
+            }
+        }
+        emission->setTransform(density->transform().copy());
+    }
+    if (!emission && !color)
+        throw FileError("'" + path + "' has neither an '" + kDccEmissionGrid + "' nor a '" + conv.colorGrid + "' grid");
+    auto radianceSource = emission ? emission : color;
+    if (radianceSource->transform() != density->transform())
+        throw FileError("'" + path + "': grids 'density' and '" + radianceSource->getName() +
+                        "' have different transforms; resample one onto the other");
+    density->tree().voxelizeActiveTiles();
+    radianceSource->tree().voxelizeActiveTiles();
+
+    VolumeLevel level;
+    level.density = openvdb::FloatGrid::create(0.f);
+    level.color = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    auto d = level.density->getAccessor();
+    auto c = level.color->getAccessor();
+    auto src = radianceSource->getConstAccessor();
+    std::size_t fixedValues = 0, emissionWithoutDensity = 0;
+    for (auto it = density->cbeginValueOn(); it; ++it) {
+        float sigma = *it;
+        fixedValues += sanitise(sigma, kOpaqueDensity);
+        if (!(sigma > 0.f)) continue;
+        openvdb::Vec3s rgb = src.getValue(it.getCoord());
+        for (int k = 0; k < 3; ++k) fixedValues += sanitise(rgb[k], emission ? kMaxRadiance * sigma : kMaxRadiance);
+        if (emission) rgb = rgb / sigma;
+        d.setValueOn(it.getCoord(), sigma);
+        c.setValueOn(it.getCoord(), rgb);
+    }
+    auto dAcc = density->getConstAccessor();
+    for (auto it = radianceSource->cbeginValueOn(); it; ++it) {
+        const openvdb::Vec3s v = *it;
+        if (!(dAcc.getValue(it.getCoord()) > 0.f) && (v[0] > 0 || v[1] > 0 || v[2] > 0)) ++emissionWithoutDensity;
+    }
+    if (fixedValues)
+        warnings.push_back("'" + path + "': replaced " + std::to_string(fixedValues) +
+                           " NaN/Inf/negative value(s) (NaN -> 0, +Inf -> opaque/max, negative -> 0)");
+    if (emissionWithoutDensity)
+        warnings.push_back("'" + path + "': " + std::to_string(emissionWithoutDensity) + " voxel(s) of '" +
+                           radianceSource->getName() +
+                           "' glow where density is 0; a lighting volume emits only where it has density, so "
+                           "they were dropped (give them density)");
+    auto xf = density->transform().copy();
+    xf->postMult(inverseRotationAsMat4(conv.worldToDcc));
+    if (conv.indexShift != 0.0) xf->preTranslate(Vec3d(-conv.indexShift));
+    level.density->setTransform(xf);
+    level.color->setTransform(xf->copy());
+    level.density->setName(densityGridName(0));
+    level.color->setName(colorGridName(0));
+    level.domain = storedDomain(*density);
+    return {level, path};
+}
+
+}  // namespace
+
+LightingVolume importFromDcc(const std::string& dirText, Dcc dcc, std::vector<std::string>* warningsOut) {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+    std::vector<std::string> warnings;
+    const DccConvention conv = dccConvention(dcc);
+    const fs::path dir(dirText);
+    const nlohmann::json manifest = readManifest(dir, conv);
+
+    std::vector<LevelRead> reads;
+    for (const auto& entry : manifest["levels"]) {
+        if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string())
+            throw FileError("'" + (dir / kDccManifestName).string() + "': a level entry has no \"file\"");
+        const std::string file = entry["file"].get<std::string>();
+        if (file.find('/') != std::string::npos || file == ".." || file.empty())
+            throw FileError("'" + (dir / kDccManifestName).string() + "': level file '" + file +
+                            "' must be a plain name inside the export directory");
+        reads.push_back(readLevel((dir / file).string(), conv, warnings));
+    }
+    LightingVolume volume;
+    for (auto& r : reads) volume.levels.push_back(r.level);
+    try {
+        volume.normaliseLevels();
+    } catch (const InputError& e) {
+        throw FileError("'" + dirText + "': " + e.what());
+    }
+    // Reorder the paths the same way (normaliseLevels sorts by voxel volume, coarsest first).
+    std::sort(reads.begin(), reads.end(), [](const LevelRead& a, const LevelRead& b) {
+        return a.level.voxelVolume() > b.level.voxelVolume();
+    });
+
+    // Domains: stored ones, else the active box; the coarsest also covers all its content.
+    for (std::size_t k = 0; k < volume.levels.size(); ++k) {
+        VolumeLevel& level = volume.levels[k];
+        const openvdb::CoordBBox active = level.density->evalActiveVoxelBoundingBox();
+        if (level.domain.empty()) level.domain = active;
+        else if (k == 0 && !active.empty()) level.domain.expand(active);
+        if (level.domain.empty())
+            throw FileError("'" + reads[k].path + "' is empty and has no lighthouse_domain metadata: "
+                            "its level's extent is unknown");
+    }
+    // Content finest-wins would hide: outside a finer level's domain, or under a finer level.
+    for (std::size_t k = 0; k < volume.levels.size(); ++k) {
+        VolumeLevel& level = volume.levels[k];
+        std::size_t outside = 0, covered = 0;
+        std::vector<openvdb::Coord> drop;
+        for (auto it = level.density->cbeginValueOn(); it; ++it) {
+            if (!level.domain.isInside(it.getCoord())) ++outside, drop.push_back(it.getCoord());
+            else if (finestLevelAt(volume, level.transform().indexToWorld(it.getCoord())) != int(k))
+                ++covered, drop.push_back(it.getCoord());
+        }
+        for (const auto& ijk : drop) {
+            level.density->tree().setValueOff(ijk, 0.f);
+            level.color->tree().setValueOff(ijk, openvdb::Vec3s(0.f));
+        }
+        if (outside)
+            warnings.push_back("'" + reads[k].path + "': " + std::to_string(outside) +
+                               " voxel(s) outside the level's region were ignored (only the coarsest level may grow)");
+        if (covered)
+            warnings.push_back("'" + reads[k].path + "': " + std::to_string(covered) +
+                               " voxel(s) lie where a finer level defines the medium and were ignored; "
+                               "edit that level's file instead");
+    }
+    fillCoveredFromFiner(volume);
+    for (auto& level : volume.levels) {
+        openvdb::tools::pruneInactive(level.density->tree());
+        openvdb::tools::pruneInactive(level.color->tree());
+    }
+    volume.normaliseLevels();
+    if (manifest.contains("layout") && manifest["layout"].is_object()) {
+        try {
+            const VolumeLayout layout = VolumeLayout::fromJson(manifest["layout"].dump(), dirText);
+            // Keep the layout only if the levels still match it.
+            bool same = layout.levels == int(volume.levels.size());
+            for (int k = 0; same && k < layout.levels; ++k)
+                same = *layout.transform(k) == volume.levels[k].transform() &&
+                       volume.levels[k].domain == openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(layout.resolution - 1));
+            if (same) volume.layout = layout;
+        } catch (const Error&) {
+            warnings.push_back("'" + dirText + "': the manifest's layout is unreadable; ignored");
+        }
+    }
+    if (manifest.contains("ref_camera") && manifest["ref_camera"].is_object())
+        volume.refCamera = cameraFromJson(manifest["ref_camera"].dump(), dirText + ": ref_camera");
+    volume.validate();
+    if (warningsOut) warningsOut->insert(warningsOut->end(), warnings.begin(), warnings.end());
+    return volume;
+}
+
+}  // namespace lh
