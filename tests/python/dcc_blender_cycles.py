@@ -120,6 +120,21 @@ def main():
             if blender_envmap(t, blender, exp, "0,0,0", png, "blocks"):
                 check_orientation(t, png)
 
+        # The script's other mode and its bad input: a .blend is saved; a directory that is
+        # not an export gives exit 1 and one error line, and writes nothing.
+        blend = os.path.join(tmp, "blocks.blend")
+        p = lt.run([blender, "-b", "--factory-startup", "--python", SCRIPT, "--", "--export", exp,
+                    "--save-blend", blend, "--at", "0,0,0"], timeout=300)
+        t.check(p.returncode == 0 and os.path.getsize(blend) > 0 if os.path.exists(blend) else False,
+                "--save-blend failed: " + lt.describe(p))
+        bad = os.path.join(tmp, "not_an_export")
+        os.mkdir(bad)
+        p = lt.run([blender, "-b", "--factory-startup", "--python", SCRIPT, "--", "--export", bad,
+                    "--envmap", os.path.join(tmp, "bad.exr"), "--at", "0,0,0"], timeout=300)
+        t.check(p.returncode == 1 and "blender_lighting_volume: error: " in p.stderr and "manifest.json" in p.stderr
+                and not os.path.exists(os.path.join(tmp, "bad.exr")),
+                "a non-export directory must fail with one error line: " + lt.describe(p))
+
         # 2. Agreement on the example room at two points.
         room = os.path.join(tmp, "room.vdb")
         p = lt.run([lighthouse, "make-example", "--levels", "3", "--res", "32", "-o", room])
