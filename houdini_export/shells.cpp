@@ -64,7 +64,22 @@ void fillCoveredFromFiner(LightingVolume& volume) {
         auto density = level.density->getAccessor();
         auto color = level.color->getAccessor();
         const auto& xf = level.transform();
-        for (auto it = level.domain.begin(); it; ++it) {
+        // Only the part of the domain that finer levels overlap (the domain itself may be huge
+        // after an edit grew the coarsest level).
+        openvdb::CoordBBox region;
+        for (std::size_t f = k + 1; f < volume.levels.size(); ++f) {
+            const WorldBox box = volume.levels[f].worldBounds();
+            for (int c = 0; c < 8; ++c) {
+                const Vec3d corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
+                                   (c & 4) ? box.max.z() : box.min.z());
+                const Vec3d q = xf.worldToIndex(corner);
+                region.expand(openvdb::Coord::floor(q));
+                region.expand(openvdb::Coord::ceil(q));
+            }
+        }
+        region.intersect(level.domain);
+        if (region.empty()) continue;
+        for (auto it = region.begin(); it; ++it) {
             const openvdb::Coord ijk = *it;
             const Vec3d centre = xf.indexToWorld(ijk);
             int j = -1;
