@@ -158,35 +158,17 @@ RenderSample RenderLevel::sample(const Vec3d& index) const {
     // Continuous lattice coordinates relative to the lattice origin.
     const double u[3] = {index.x() - latticeOrigin.x(), index.y() - latticeOrigin.y(),
                          index.z() - latticeOrigin.z()};
-    int local[3], brick[3];
-    float w[3];
+    int brick[3];
+    float local[3];
     for (int a = 0; a < 3; ++a) {
         const int maxCell = brickCount[a] * kBrick - 1;
-        int i = int(std::floor(u[a]));
-        i = std::clamp(i, 0, maxCell);
-        w[a] = float(std::clamp(u[a] - i, 0.0, 1.0));
+        const int i = std::clamp(int(std::floor(u[a])), 0, maxCell);
         brick[a] = i >> kBrickLog2;
-        local[a] = i & (kBrick - 1);
+        local[a] = float(std::clamp(u[a] - (brick[a] << kBrickLog2), 0.0, double(kBrick)));
     }
     const int b = brickIndex(brick[0], brick[1], brick[2]);
-    RenderSample s{0.f, {0.f, 0.f, 0.f}};
-    if (b < 0) return s;
-    const float* base = &brickData[std::size_t(b) * kLatticeValues * 4];
-    const std::size_t strideY = kLattice * 4, strideZ = kLattice * kLattice * 4;
-    const float* p = base + local[2] * strideZ + local[1] * strideY + local[0] * 4;
-    float acc[4] = {0.f, 0.f, 0.f, 0.f};
-    for (int corner = 0; corner < 8; ++corner) {
-        const int dx = corner & 1, dy = (corner >> 1) & 1, dz = corner >> 2;
-        const float weight = (dx ? w[0] : 1.f - w[0]) * (dy ? w[1] : 1.f - w[1]) *
-                             (dz ? w[2] : 1.f - w[2]);
-        const float* v = p + dz * strideZ + dy * strideY + dx * 4;
-        for (int c = 0; c < 4; ++c) acc[c] += weight * v[c];
-    }
-    s.sigma = acc[0];
-    s.emission[0] = acc[1];
-    s.emission[1] = acc[2];
-    s.emission[2] = acc[3];
-    return s;
+    if (b < 0) return {0.f, {0.f, 0.f, 0.f}};
+    return sampleLattice(brickPointer(b), local[0], local[1], local[2]);
 }
 
 bool RenderLevel::brickOccupied(int bx, int by, int bz) const {

@@ -15,6 +15,7 @@
 
 #include "vdb/lighting_volume.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -46,6 +47,30 @@ public:
     }
     // Trilinear sample at continuous index coordinates. Valid inside [domainLo, domainHi].
     RenderSample sample(const Vec3d& index) const;
+    // Trilinear sample inside one stored brick: `brick` points at its kLattice^3 x 4 floats,
+    // (u, v, w) are lattice coordinates relative to its first lattice point, in [0, kBrick]
+    // (clamped). The marcher's inner loop: no table lookup, no bounds logic beyond the clamp.
+    static RenderSample sampleLattice(const float* brick, float u, float v, float w) {
+        const int i = std::clamp(int(u), 0, kBrick - 1), j = std::clamp(int(v), 0, kBrick - 1),
+                  k = std::clamp(int(w), 0, kBrick - 1);
+        const float fx = std::clamp(u - float(i), 0.f, 1.f), fy = std::clamp(v - float(j), 0.f, 1.f),
+                    fz = std::clamp(w - float(k), 0.f, 1.f);
+        constexpr int sy = kLattice * 4, sz = kLattice * kLattice * 4;
+        const float* p = brick + (k * sz + j * sy + i * 4);
+        float out[4];
+        for (int c = 0; c < 4; ++c) {  // lerps: exact for equal corners (constant media)
+            const float c00 = p[c] + fx * (p[4 + c] - p[c]);
+            const float c10 = p[sy + c] + fx * (p[sy + 4 + c] - p[sy + c]);
+            const float c01 = p[sz + c] + fx * (p[sz + 4 + c] - p[sz + c]);
+            const float c11 = p[sz + sy + c] + fx * (p[sz + sy + 4 + c] - p[sz + sy + c]);
+            const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
+            out[c] = c0 + fz * (c1 - c0);
+        }
+        return {out[0], {out[1], out[2], out[3]}};
+    }
+    const float* brickPointer(int stored) const {
+        return brickData.data() + std::size_t(stored) * kLattice * kLattice * kLattice * 4;
+    }
     // True if the brick cell at brick coordinates (bx, by, bz) holds density.
     bool brickOccupied(int bx, int by, int bz) const;
     int brickIndex(int bx, int by, int bz) const {
