@@ -16,6 +16,8 @@ void addSynthCommand(CLI::App& app);
 void addOracleCommand(CLI::App& app);
 void addInsertCommand(CLI::App& app);
 void addBenchEnvmapCommand(CLI::App& app);
+void addSparsifyCommand(CLI::App& app);
+void addBenchSparsityCommand(CLI::App& app);
 void addEditCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addImportCommand(CLI::App& app);

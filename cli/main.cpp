@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
     lh::cli::addExportCommand(app);
     lh::cli::addImportCommand(app);
     lh::cli::addBenchEnvmapCommand(app);
+    lh::cli::addSparsifyCommand(app);
+    lh::cli::addBenchSparsityCommand(app);
 
     std::unique_ptr<tbb::global_control> threadLimit;
     app.parse_complete_callback([&] {

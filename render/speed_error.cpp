@@ -4,7 +4,10 @@
 #include "core/errors.h"
 #include "core/random.h"
 #include "render/baseline_renderers.h"
+#include "render/image_io.h"
 #include "render/metrics.h"
+#include "vdb/sparsity.h"
+#include "vdb/volume_io.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,6 +15,7 @@
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <unistd.h>
 
 namespace lh {
 
@@ -59,14 +63,19 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
         }
         rows.push_back({method, setting, ms / points.size(), std::sqrt(squared / n) / (mean / n), psnrSum / points.size()});
     };
-    for (double threshold : {1e-4, 1e-2})
-        for (double step : {0.25, 0.5, 1.0, 2.0}) {
-            std::ostringstream s;
-            s << "step " << step << ", T<" << threshold;
-            measure("ours", s.str(), [&](const Vec3d& p) {
-                return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{step, threshold, true}});
-            });
-        }
+    // How converged the reference is: the same at half the step and optical depth per step.
+    measure("reference-check", "step 0.025, tau<0.01", [&](const Vec3d& p) {
+        return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{0.025, 0.0, false, 0.01}});
+    });
+    for (double tauMax : {0.5, 0.1})
+        for (double threshold : {1e-4, 1e-2})
+            for (double step : {0.25, 0.5, 1.0, 2.0}) {
+                std::ostringstream s;
+                s << "step " << step << ", T<" << threshold << ", tau<" << tauMax;
+                measure("ours", s.str(), [&](const Vec3d& p) {
+                    return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{step, threshold, true, tauMax}});
+                });
+            }
     for (double step : {0.5, 1.0, 2.0})
         measure("openvdb-fixed-step", "step " + std::to_string(step).substr(0, 4),
                 [&](const Vec3d& p) { return renderEnvmapOpenVdbFixedStep(volume, p, o.width, o.height, step); });
@@ -103,7 +112,7 @@ std::string svgPlot(const std::vector<SpeedErrorRow>& rows) {
     s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>ms per 240x120 envmap (2 cores)</text>\n"
       << "<text x='16' y='" << (T + H - B) / 2 << "' transform='rotate(-90 16 " << (T + H - B) / 2
       << ")' text-anchor='middle'>RMSE / mean radiance</text>\n";
-    const std::map<std::string, std::string> colours = {{"ours", "#d62728"}, {"openvdb-fixed-step", "#1f77b4"}, {"paper-spheres", "#2ca02c"}};
+    const std::map<std::string, std::string> colours = {{"ours", "#d62728"}, {"openvdb-fixed-step", "#1f77b4"}, {"paper-spheres", "#2ca02c"}, {"reference-check", "#7f7f7f"}};
     int legend = 0;
     for (const auto& [method, colour] : colours) {
         std::vector<SpeedErrorRow> mine;
@@ -139,6 +148,253 @@ void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::st
     writeTextFile((dir / "speed_error.csv").string(), csv.str());
     writeTextFile((dir / "speed_error.md").string(), md.str());
     writeTextFile((dir / "speed_error.svg").string(), svgPlot(rows));
+}
+
+// ---- Memory against error ----
+
+namespace {
+
+struct ErrorStats {
+    double psnr = 100, relativeRmse = 0;
+};
+
+ErrorStats compareSets(const std::vector<ImageRGB>& images, const std::vector<ImageRGB>& reference) {
+    double squared = 0, mean = 0, psnrSum = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        for (std::size_t k = 0; k < images[i].pixels.size(); ++k) {
+            squared += std::pow(double(images[i].pixels[k]) - reference[i].pixels[k], 2);
+            mean += reference[i].pixels[k];
+            ++n;
+        }
+        psnrSum += std::min(psnr(images[i], reference[i]), 100.0);
+    }
+    ErrorStats e;
+    e.psnr = psnrSum / images.size();
+    e.relativeRmse = mean > 0 ? std::sqrt(squared / n) / (mean / n) : 0.0;
+    return e;
+}
+
+std::vector<ImageRGB> renderAll(const RenderVolume& volume, const std::vector<Vec3d>& points, int w, int h,
+                                double* msPerEnvmap = nullptr, const MarchOptions& march = {}) {
+    std::vector<ImageRGB> images;
+    const auto start = std::chrono::steady_clock::now();
+    for (const Vec3d& p : points) images.push_back(renderEnvmap(volume, p, {w, h, march}));
+    if (msPerEnvmap)
+        *msPerEnvmap = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+                       std::max<std::size_t>(1, points.size());
+    return images;
+}
+
+uint64_t fileBytes(const std::string& path) { return std::filesystem::file_size(path); }
+
+std::string scratchDirectory(const MemoryErrorOptions& o) {
+    const std::filesystem::path dir = o.scratchDir.empty()
+                                          ? std::filesystem::temp_directory_path() /
+                                                ("lighthouse_sparsity_" + std::to_string(::getpid()))
+                                          : std::filesystem::path(o.scratchDir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+// The volume as stored: through a half-precision file and back when asked.
+LightingVolume asStored(const LightingVolume& volume, bool half, const std::string& scratch, uint64_t* bytes) {
+    const std::string path = scratch + (half ? "/half.vdb" : "/float.vdb");
+    saveSparseVolume(path, volume, half);
+    if (bytes) *bytes = fileBytes(path);
+    LightingVolume loaded = loadVolume(path);
+    std::filesystem::remove(path);
+    return loaded;
+}
+
+}  // namespace
+
+double requiredPsnrForLoss(double lossDb, double basePsnr) {
+    if (!(lossDb > 0 && std::isfinite(lossDb) && std::isfinite(basePsnr)))
+        throw InputError("a PSNR loss target must be positive, got " + std::to_string(lossDb));
+    return basePsnr - 20.0 * std::log10(std::pow(10.0, lossDb / 20.0) - 1.0);
+}
+
+std::vector<MemoryErrorRow> measureMemoryAgainstError(const LightingVolume& volume, const MemoryErrorOptions& o,
+                                                      const std::function<void(const std::string&)>& progress) {
+    const auto say = [&](const std::string& s) { if (progress) progress(s); };
+    const RenderVolume unprunedRender(volume);
+    const std::vector<Vec3d> points = freeSpacePoints(unprunedRender, o.points, o.seed);
+    const std::vector<ImageRGB> reference = renderAll(unprunedRender, points, o.width, o.height, nullptr, o.errorMarch);
+    // Ground truth: the data set's envmaps at their own points.
+    std::vector<Vec3d> gtPoints;
+    std::vector<ImageRGB> gt;
+    if (!o.datasetDir.empty()) {
+        const CamerasFile cameras = loadCamerasFile(o.datasetDir + "/cameras.json");
+        for (const auto& e : cameras.envmaps) {
+            gt.push_back(readImage(o.datasetDir + "/" + e.file));
+            gtPoints.push_back(e.position);
+        }
+        if (gt.empty()) throw InputError(o.datasetDir + "/cameras.json lists no envmaps");
+    }
+    const auto gtPsnr = [&](const RenderVolume& v) {
+        double sum = 0;
+        for (std::size_t i = 0; i < gt.size(); ++i)
+            sum += psnr(renderEnvmap(v, gtPoints[i], {gt[i].width, gt[i].height, o.errorMarch}), gt[i]);
+        return sum / std::max<std::size_t>(1, gt.size());
+    };
+    const std::string scratch = scratchDirectory(o);
+    std::vector<MemoryErrorRow> rows;
+    const auto addRow = [&](const std::string& setting, double tau, const LightingVolume& v) {
+        say(setting);
+        MemoryErrorRow row;
+        row.setting = setting;
+        row.tau = tau;
+        row.activeVoxels = activeDensityVoxels(v);
+        row.memoryBytes = v.memoryBytes();
+        row.levels = int(v.levels.size());
+        asStored(v, false, scratch, &row.diskBytesFloat);
+        const LightingVolume stored = asStored(v, true, scratch, &row.diskBytesHalf);
+        const RenderVolume render(o.halfPrecision ? stored : v);
+        renderAll(render, points, o.width, o.height);  // warm caches before timing
+        renderAll(render, points, o.width, o.height, &row.msPerEnvmap);
+        const ErrorStats e = compareSets(renderAll(render, points, o.width, o.height, nullptr, o.errorMarch), reference);
+        row.psnrVsUnpruned = tau < 0 ? 100.0 : e.psnr;
+        row.relativeRmse = tau < 0 ? 0.0 : e.relativeRmse;
+        if (!gt.empty()) {
+            row.psnrGroundTruth = gtPsnr(render);
+            row.lossDb = rows.empty() ? 0.0 : rows.front().psnrGroundTruth - row.psnrGroundTruth;
+        }
+        rows.push_back(row);
+    };
+    // The unpruned row is measured in float: it is the volume as given.
+    {
+        say("unpruned");
+        MemoryErrorRow row;
+        row.setting = "unpruned";
+        row.tau = -1;
+        row.activeVoxels = activeDensityVoxels(volume);
+        row.memoryBytes = volume.memoryBytes();
+        row.levels = int(volume.levels.size());
+        asStored(volume, false, scratch, &row.diskBytesFloat);
+        asStored(volume, true, scratch, &row.diskBytesHalf);
+        renderAll(unprunedRender, points, o.width, o.height);
+        renderAll(unprunedRender, points, o.width, o.height, &row.msPerEnvmap);
+        if (!gt.empty()) row.psnrGroundTruth = gtPsnr(unprunedRender);
+        rows.push_back(row);
+    }
+    for (double tau : o.taus) {
+        SparsityOptions so;
+        so.tau = tau;
+        std::ostringstream name;
+        name << "tau " << tau;
+        addRow(name.str(), tau, sparsify(volume, so));
+    }
+    std::filesystem::remove_all(scratch);
+    return rows;
+}
+
+BoundChoice chooseSparsityBound(const LightingVolume& volume, double requiredPsnr, const MemoryErrorOptions& o,
+                                const std::function<void(const std::string&)>& progress) {
+    const RenderVolume unprunedRender(volume);
+    const std::vector<Vec3d> points = freeSpacePoints(unprunedRender, o.points, o.seed);
+    const std::vector<ImageRGB> reference = renderAll(unprunedRender, points, o.width, o.height, nullptr, o.errorMarch);
+    const std::string scratch = scratchDirectory(o);
+    BoundChoice choice;
+    for (double tau = 0.1; tau > 0.9e-6; tau /= std::sqrt(10.0)) {
+        SparsityOptions so;
+        so.tau = tau;
+        const LightingVolume pruned = sparsify(volume, so);
+        const RenderVolume render(o.halfPrecision ? asStored(pruned, true, scratch, nullptr) : pruned);
+        const ErrorStats e = compareSets(renderAll(render, points, o.width, o.height, nullptr, o.errorMarch), reference);
+        if (progress) {
+            char line[128];
+            std::snprintf(line, sizeof line, "tau %.3g: %.1f dB against the unpruned envmaps", tau, e.psnr);
+            progress(line);
+        }
+        if (e.psnr >= requiredPsnr) {
+            choice = {tau, e.psnr};
+            break;
+        }
+    }
+    std::filesystem::remove_all(scratch);
+    return choice;
+}
+
+namespace {
+
+std::string memorySvg(const std::vector<MemoryErrorRow>& rows, double denseBytes) {
+    // x = bytes (log), y = PSNR against the unpruned envmaps (linear, capped at 100).
+    double x0 = 1e30, x1 = 0;
+    for (const auto& r : rows)
+        for (double b : {double(r.memoryBytes), double(r.diskBytesHalf)})
+            x0 = std::min(x0, b), x1 = std::max(x1, b);
+    x1 = std::max(x1, denseBytes);
+    x0 = std::pow(10, std::floor(std::log10(std::max(x0, 1.0)))), x1 = std::pow(10, std::ceil(std::log10(x1)));
+    double y0 = 100, y1 = 100;
+    for (const auto& r : rows) y0 = std::min(y0, r.psnrVsUnpruned);
+    y0 = std::floor(y0 / 10) * 10 - 10;
+    const double W = 640, H = 420, L = 70, R = 190, T = 20, B = 50;
+    const auto px = [&](double x) { return L + (std::log10(std::max(x, 1.0)) - std::log10(x0)) / (std::log10(x1) - std::log10(x0)) * (W - L - R); };
+    const auto py = [&](double y) { return T + (y1 - y) / (y1 - y0) * (H - T - B); };
+    std::ostringstream s;
+    s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' font-family='sans-serif' font-size='12'>\n"
+      << "<rect width='100%' height='100%' fill='white'/>\n";
+    for (double x = x0; x <= x1 * 1.001; x *= 10)
+        s << "<line x1='" << px(x) << "' y1='" << T << "' x2='" << px(x) << "' y2='" << H - B << "' stroke='#ddd'/>"
+          << "<text x='" << px(x) << "' y='" << H - B + 16 << "' text-anchor='middle'>" << x << "</text>\n";
+    for (double y = y0; y <= y1 + 1e-9; y += 10)
+        s << "<line x1='" << L << "' y1='" << py(y) << "' x2='" << W - R << "' y2='" << py(y) << "' stroke='#ddd'/>"
+          << "<text x='" << L - 6 << "' y='" << py(y) + 4 << "' text-anchor='end'>" << y << "</text>\n";
+    s << "<line x1='" << px(denseBytes / 10) << "' y1='" << T << "' x2='" << px(denseBytes / 10) << "' y2='" << H - B
+      << "' stroke='#888' stroke-dasharray='4 3'/><text x='" << px(denseBytes / 10) + 4 << "' y='" << T + 12
+      << "' fill='#555'>dense / 10</text>\n";
+    s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>bytes</text>\n"
+      << "<text x='16' y='" << (T + H - B) / 2 << "' transform='rotate(-90 16 " << (T + H - B) / 2
+      << ")' text-anchor='middle'>PSNR vs unpruned envmaps (dB, 100 = identical)</text>\n";
+    const struct { const char* name; const char* colour; bool disk; } series[] = {
+        {"in memory", "#d62728", false}, {"on disk (Blosc, half)", "#1f77b4", true}};
+    int legend = 0;
+    for (const auto& sr : series) {
+        s << "<polyline fill='none' stroke='" << sr.colour << "' points='";
+        for (const auto& r : rows) s << px(sr.disk ? r.diskBytesHalf : r.memoryBytes) << "," << py(r.psnrVsUnpruned) << " ";
+        s << "'/>\n";
+        for (const auto& r : rows)
+            s << "<circle cx='" << px(sr.disk ? r.diskBytesHalf : r.memoryBytes) << "' cy='" << py(r.psnrVsUnpruned)
+              << "' r='4' fill='" << sr.colour << "'><title>" << r.setting << "</title></circle>\n";
+        s << "<text x='" << W - R + 12 << "' y='" << T + 20 + 18 * legend++ << "' fill='" << sr.colour << "'>" << sr.name << "</text>\n";
+    }
+    s << "</svg>\n";
+    return s.str();
+}
+
+}  // namespace
+
+void writeMemoryErrorReport(const std::vector<MemoryErrorRow>& rows, const std::string& directory, double denseBytes) {
+    std::filesystem::create_directories(directory);
+    std::ostringstream csv, md;
+    const bool gt = !rows.empty() && rows.front().psnrGroundTruth >= 0;
+    csv << "setting,tau,levels,active_voxels,memory_bytes,disk_bytes_float,disk_bytes_half,fraction_of_dense,"
+           "psnr_vs_unpruned_db,relative_rmse,ms_per_envmap,psnr_ground_truth_db,loss_db\n";
+    md << "| setting | levels | active voxels | MB in memory | MB on disk (float) | MB on disk (half) | memory / dense | "
+          "PSNR vs unpruned (dB) | RMSE / mean | ms / envmap |"
+       << (gt ? " PSNR vs ground truth (dB) | loss (dB) |" : "") << "\n|---|---|---|---|---|---|---|---|---|---|"
+       << (gt ? "---|---|" : "") << "\n";
+    for (const auto& r : rows) {
+        csv << r.setting << "," << r.tau << "," << r.levels << "," << r.activeVoxels << "," << r.memoryBytes << ","
+            << r.diskBytesFloat << "," << r.diskBytesHalf << "," << r.memoryBytes / denseBytes << "," << r.psnrVsUnpruned
+            << "," << r.relativeRmse << "," << r.msPerEnvmap << "," << r.psnrGroundTruth << "," << r.lossDb << "\n";
+        char line[512];
+        std::snprintf(line, sizeof line, "| %s | %d | %llu | %.2f | %.3f | %.3f | %.3f | %.1f | %.1e | %.1f |",
+                      r.setting.c_str(), r.levels, static_cast<unsigned long long>(r.activeVoxels), r.memoryBytes / 1e6,
+                      r.diskBytesFloat / 1e6, r.diskBytesHalf / 1e6, r.memoryBytes / denseBytes, r.psnrVsUnpruned,
+                      r.relativeRmse, r.msPerEnvmap);
+        md << line;
+        if (gt) {
+            std::snprintf(line, sizeof line, " %.3f | %.3f |", r.psnrGroundTruth, r.lossDb);
+            md << line;
+        }
+        md << "\n";
+    }
+    const std::filesystem::path dir(directory);
+    writeTextFile((dir / "memory_error.csv").string(), csv.str());
+    writeTextFile((dir / "memory_error.md").string(), md.str());
+    writeTextFile((dir / "memory_error.svg").string(), memorySvg(rows, denseBytes));
 }
 
 }  // namespace lh

@@ -1,0 +1,79 @@
+// `lighthouse sparsify IN.vdb -o OUT.vdb [--target-db 0.1] [--base-psnr 30] [--tau T]
+//  [--levels-from-depth NEAR,FAR] [--float]`: stores only what the scene needs (vdb/sparsity.h).
+// Without --tau the bound is searched: the largest tau whose envmaps (at random free-space
+// points, through the file's half precision) stay within the PSNR that guarantees at most
+// --target-db of loss for a volume that reaches --base-psnr against ground truth.
+#include "cli/cli_common.h"
+#include "cli/commands.h"
+#include "core/errors.h"
+#include "render/speed_error.h"
+#include "vdb/sparsity.h"
+
+#include <cstdio>
+#include <iostream>
+
+namespace lh::cli {
+
+namespace {
+
+struct SparsifyOptions {
+    std::string input, output, depthRange;
+    double targetDb = 0.1;  // PSNR loss allowed against ground truth, dB
+    double basePsnr = 30;   // PSNR the volume reaches against ground truth, dB (higher: stricter)
+    double tau = -1;        // explicit bound; < 0: searched from targetDb
+    bool floatPrecision = false;
+    int points = 4;
+};
+
+void runSparsify(const SparsifyOptions& o) {
+    if (o.output.size() < 5 || o.output.substr(o.output.size() - 4) != ".vdb")
+        throw InputError("output must be a .vdb file, got '" + o.output + "'");
+    if (o.tau >= 0) SparsityOptions{o.tau}.validate();
+    if (!(o.targetDb > 0 && o.targetDb <= 10)) throw InputError("--target-db must be in (0, 10] dB");
+    if (!(o.basePsnr > 0 && o.basePsnr < 100)) throw InputError("--base-psnr must be in (0, 100) dB");
+    if (o.points < 1 || o.points > 64) throw InputError("--points must be in [1, 64]");
+    SparsityOptions options;
+    if (!o.depthRange.empty()) {
+        const Vec3d range = parsePoint(o.depthRange + ",1", "--levels-from-depth NEAR,FAR");
+        options.maxLevels = levelsForDepthRange(range[0], range[1], 64);
+    }
+    const LightingVolume volume = loadVolumeForCli(o.input, false);
+    if (o.tau >= 0) {
+        options.tau = o.tau;
+    } else {
+        MemoryErrorOptions search;
+        search.points = o.points;
+        search.halfPrecision = !o.floatPrecision;
+        const double required = requiredPsnrForLoss(o.targetDb, o.basePsnr);
+        std::fprintf(stderr, "sparsify: envmaps must stay within %.1f dB of the unpruned ones\n", required);
+        const BoundChoice choice = chooseSparsityBound(volume, required, search,
+                                                       [](const std::string& s) { std::cerr << "sparsify: " << s << "\n"; });
+        options.tau = choice.tau;
+    }
+    SparsityStats stats;
+    const LightingVolume pruned = sparsify(volume, options, &stats);
+    saveSparseVolume(o.output, pruned, !o.floatPrecision);
+    std::printf("tau %.3g: %llu -> %llu active voxels, %.2f -> %.2f MB in memory, %d level(s) dropped, "
+                "%s on disk (%s, Blosc)\n",
+                options.tau, static_cast<unsigned long long>(stats.activeBefore),
+                static_cast<unsigned long long>(stats.activeAfter), stats.memoryBefore / 1e6, stats.memoryAfter / 1e6,
+                stats.levelsDropped, o.output.c_str(), o.floatPrecision ? "float" : "half");
+}
+
+}  // namespace
+
+void addSparsifyCommand(CLI::App& app) {
+    auto o = std::make_shared<SparsifyOptions>();
+    CLI::App* cmd = app.add_subcommand("sparsify", "Drop what a volume's envmaps do not need, within an error bound");
+    cmd->add_option("input", o->input, "Lighting volume (.vdb)")->required();
+    cmd->add_option("-o,--output", o->output, "Output .vdb")->required();
+    cmd->add_option("--target-db", o->targetDb, "PSNR loss allowed against ground truth (dB)")->capture_default_str();
+    cmd->add_option("--base-psnr", o->basePsnr, "PSNR the volume reaches against ground truth (dB)")->capture_default_str();
+    cmd->add_option("--tau", o->tau, "Explicit per-voxel bound in display radiance (skips the search)");
+    cmd->add_option("--levels-from-depth", o->depthRange, "NEAR,FAR: keep the levels this depth range needs");
+    cmd->add_option("--points", o->points, "Random free-space points for the search")->capture_default_str();
+    cmd->add_flag("--float", o->floatPrecision, "Store 32-bit floats instead of halves");
+    cmd->callback([o] { runSparsify(*o); });
+}
+
+}  // namespace lh::cli

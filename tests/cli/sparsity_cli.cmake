@@ -1,0 +1,38 @@
+# `lighthouse sparsify` and `lighthouse bench-sparsity`: bad input fails with one clear line
+# and leaves no output behind; a good run writes a smaller, loadable volume.
+lighthouse_cli_error(sparsify_random_bytes
+  EXPECT "random[.]vdb.*VDB"
+  ABSENT sparse_random.vdb
+  ARGS sparsify random.vdb -o sparse_random.vdb --tau 1e-3)
+lighthouse_cli_error(sparsify_text_file
+  EXPECT "text[.]vdb.*VDB"
+  ABSENT sparse_text.vdb
+  ARGS sparsify text.vdb -o sparse_text.vdb --tau 1e-3)
+lighthouse_cli_error(sparsify_output_not_vdb
+  EXPECT "output must be a [.]vdb file"
+  ABSENT sparse.exr
+  ARGS sparsify example.vdb -o sparse.exr)
+lighthouse_cli_error(sparsify_bad_tau
+  EXPECT "tau must be in .0, 1."
+  ABSENT sparse_badtau.vdb
+  ARGS sparsify example.vdb -o sparse_badtau.vdb --tau 5)
+lighthouse_cli_error(sparsify_bad_target
+  EXPECT "--target-db must be in"
+  ABSENT sparse_badtarget.vdb
+  ARGS sparsify example.vdb -o sparse_badtarget.vdb --target-db -1)
+lighthouse_cli_error(sparsify_bad_depth_range
+  EXPECT "depth range needs finite 0 < near <= far"
+  ABSENT sparse_baddepth.vdb
+  ARGS sparsify example.vdb -o sparse_baddepth.vdb --tau 1e-3 --levels-from-depth 5,2)
+lighthouse_cli_error(bench_sparsity_bad_taus
+  EXPECT "--taus: expected numbers in .0, 1."
+  ABSENT bench_sparsity_bad/memory_error.csv
+  ARGS bench-sparsity example.vdb --taus 1e-3,abc --out bench_sparsity_bad)
+lighthouse_cli_error(bench_sparsity_random_bytes
+  EXPECT "random[.]vdb.*VDB"
+  ABSENT bench_sparsity_random/memory_error.csv
+  ARGS bench-sparsity random.vdb --out bench_sparsity_random)
+lighthouse_cli_ok(sparsify_example
+  STDOUT "active voxels" "half"
+  FILES sparse_example.vdb
+  ARGS sparsify example.vdb -o sparse_example.vdb --tau 1e-3)
