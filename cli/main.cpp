@@ -19,6 +19,11 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(0, 1024));
     lh::cli::addInfoCommand(app);
+#ifdef LIGHTHOUSE_HAS_NET
+    lh::cli::addPredictCommand(app, threads);
+    lh::cli::addTrainCommand(app, threads);
+    lh::cli::addEvalCommand(app, threads);
+#endif
     lh::cli::addRenderEnvmapCommand(app);
     lh::cli::addRenderViewCommand(app);
     lh::cli::addMakeExampleCommand(app);
@@ -60,7 +65,9 @@ int main(int argc, char** argv) {
         std::cerr << "lighthouse: error: out of memory; try a smaller size or volume\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "lighthouse: error: " << e.what() << "\n";
+        // Libraries such as libtorch append a stack trace: the first line is the message.
+        const std::string message = e.what();
+        std::cerr << "lighthouse: error: " << message.substr(0, message.find('\n')) << "\n";
         return 1;
     }
     return 0;

@@ -1,0 +1,39 @@
+// Time of `predict` (the network part: plane sweep, MPI network, resampling, completion) for
+// the `small` and `paper` configurations on the bundled 320x240 stereo pair, with the thread
+// count libtorch is given. The paper configuration is timed with random weights: its cost
+// does not depend on their values. Target (issue 4): paper under 5 s on 2 cores.
+#include "core/camera.h"
+#include "net/predictor.h"
+#include "render/image_io.h"
+
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+namespace {
+
+const std::string kPair = std::string(LIGHTHOUSE_SOURCE_DIR) + "/data/demo_pair/";
+
+void predictWith(benchmark::State& state, const char* config) {
+    lh::net::StereoPair pair{lh::readImage(kPair + "ref.png"), lh::readImage(kPair + "src.png"),
+                             lh::loadCamerasFile(kPair + "cameras.json")};
+    lh::net::PredictorOptions options;
+    options.untrainedConfig = config;
+    options.threads = int(state.range(0));
+    const lh::net::Predictor predictor(options);
+    for (auto _ : state) {
+        const lh::net::Prediction p = predictor.predict(pair);
+        benchmark::DoNotOptimize(p.seconds);
+        state.counters["network_s"] = p.seconds;
+    }
+}
+
+void BM_PredictSmall(benchmark::State& state) { predictWith(state, "small"); }
+void BM_PredictPaper(benchmark::State& state) { predictWith(state, "paper"); }
+
+BENCHMARK(BM_PredictSmall)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
+BENCHMARK(BM_PredictPaper)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,31 @@
+// `lighthouse eval --data DIR [--model M] [-o DIR]`: the paper's Table 2 on our test split.
+#include "cli/commands.h"
+#include "net/evaluation.h"
+
+#include <iostream>
+
+namespace lh::cli {
+
+void addEvalCommand(CLI::App& app, const int& threads) {
+    auto o = std::make_shared<net::EvalOptions>();
+    o->hdriDir = LIGHTHOUSE_HDRI_DIR;
+    CLI::App* cmd = app.add_subcommand(
+        "eval", "Score the model against baselines and the oracle on a synthetic test split (Markdown table + contact sheet)");
+    cmd->add_option("--data", o->data, "Test split written by `lighthouse synth --split test`")->required();
+    cmd->add_option("--model", o->model, "Model file (default: the bundled small model)");
+    cmd->add_option("-o,--output", o->out, "Output directory: table.md, metrics.csv, contact_sheet.png")
+        ->capture_default_str();
+    cmd->add_option("--max-scenes", o->maxScenes, "Evaluate only the first N scenes (0: all)")->capture_default_str();
+    cmd->add_flag("!--no-oracle", o->oracle, "Skip the oracle ceiling (it re-bakes every scene's light)");
+    cmd->add_option("--hdri-dir", o->hdriDir, "Panoramas of the scenes' windows (for the oracle)")
+        ->capture_default_str();
+    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (untested here)")
+        ->capture_default_str();
+    cmd->callback([o, &threads] {
+        o->threads = threads;
+        const net::EvalReport report = net::evaluate(*o, std::cerr);
+        std::cout << report.markdown;
+    });
+}
+
+}  // namespace lh::cli

@@ -1,0 +1,36 @@
+// `lighthouse train --data DIR --config small --out model.pt`
+#include "cli/commands.h"
+#include "net/trainer.h"
+
+#include <iostream>
+
+namespace lh::cli {
+
+void addTrainCommand(CLI::App& app, const int& threads) {
+    auto o = std::make_shared<net::TrainOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "train", "Train the prediction network on a synthetic data set (resumes from OUT.checkpoint)");
+    cmd->add_option("--data", o->data, "Training split written by `lighthouse synth --split train`")->required();
+    cmd->add_option("--val", o->validation, "Held-out scenes for validation (default: the last 5% of --data)");
+    cmd->add_option("--config", o->config, "small or paper")->capture_default_str();
+    cmd->add_option("--out", o->out, "Model file; OUT.checkpoint, OUT.csv and OUT.png are written next to it")
+        ->capture_default_str();
+    cmd->add_option("--iterations", o->iterations, "Training iterations (batch 1)")->capture_default_str();
+    cmd->add_option("--lr", o->learningRate, "Adam learning rate (divided by 10 for the last 20%)")
+        ->capture_default_str();
+    cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")->capture_default_str();
+    cmd->add_option("--validation-scenes", o->validationScenes, "Held-out scenes scored at each validation")
+        ->capture_default_str();
+    cmd->add_option("--checkpoint-every", o->checkpointEvery, "Iterations between checkpoints")->capture_default_str();
+    cmd->add_option("--log-every", o->logEvery, "Iterations between progress lines")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (untested here)")
+        ->capture_default_str();
+    cmd->add_flag("!--no-resume", o->resume, "Start afresh even if OUT.checkpoint exists");
+    cmd->callback([o, &threads] {
+        o->threads = threads;
+        net::train(*o, std::cerr);
+    });
+}
+
+}  // namespace lh::cli

@@ -1,0 +1,161 @@
+#include "net/evaluation.h"
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "net/predictor.h"
+#include "net/training_data.h"
+#include "render/contact_sheet.h"
+#include "render/envmap.h"
+#include "render/envmap_layout.h"
+#include "render/image_io.h"
+#include "render/metrics.h"
+#include "render/render_volume.h"
+#include "synth/oracle.h"
+#include "synth/panorama.h"
+#include "synth/radiance_field.h"
+#include "synth/ray_tracer.h"
+#include "synth/scene_json.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace lh::net {
+
+namespace {
+
+// sRGB 0.5 grey, in linear radiance.
+constexpr float kGreyFill = 0.2140411f;
+
+// Envmap at `position` with whatever the volume leaves unseen (its transmittance) filled with
+// `background`.
+ImageRGB renderWithBackground(const RenderVolume& volume, const Vec3d& position, int width, int height,
+                              const float background[3]) {
+    ImageRGB image(width, height);
+    const MarchOptions march;
+    tbb::parallel_for(0, height, [&](int row) {
+        for (int c = 0; c < width; ++c) {
+            const RayResult r = marchRay(volume, position, envmapPixelDirection(row, c, width, height), march);
+            float* p = image.at(c, row);
+            for (int ch = 0; ch < 3; ++ch) p[ch] = float(r.radiance[ch] + r.transmittance * background[ch]);
+        }
+    });
+    return image;
+}
+
+void meanColour(const ImageRGB& image, float out[3]) {
+    double sum[3] = {0, 0, 0};
+    for (size_t i = 0; i < image.pixels.size(); ++i) sum[i % 3] += image.pixels[i];
+    const double n = double(image.width) * image.height;
+    for (int c = 0; c < 3; ++c) out[c] = float(sum[c] / n);
+}
+
+std::string cell(const std::vector<double>& values, int precision) {
+    const MeanStd m = meanStd(values);
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(precision) << m.mean << " +- " << m.std;
+    return out.str();
+}
+
+}  // namespace
+
+EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
+    std::vector<std::string> dirs = listExamples(o.data);
+    if (o.maxScenes > 0 && int(dirs.size()) > o.maxScenes) dirs.resize(size_t(o.maxScenes));
+    PredictorOptions po;
+    po.model = o.model;
+    po.device = o.device;
+    po.threads = o.threads;
+    const Predictor predictor(po);
+    const NetConfig& config = predictor.config();
+    fs::create_directories(o.out);
+
+    EvalReport report;
+    report.methods = {{"ours", {}, {}, {}, {}}, {"ours, MPI only", {}, {}, {}, {}},
+                      {"single global envmap", {}, {}, {}, {}}};
+    if (o.oracle) report.methods.push_back({"oracle (ceiling)", {}, {}, {}, {}});
+    std::vector<std::vector<ImageRGB>> sheetRows;
+    std::ostringstream csv;
+    csv << "example,envmap,method,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg\n";
+    std::unique_ptr<synth::PanoramaLibrary> panoramas;
+    if (o.oracle) panoramas = std::make_unique<synth::PanoramaLibrary>(o.hdriDir);
+
+    for (size_t s = 0; s < dirs.size(); ++s) {
+        const TrainingExample ex = loadExample(dirs[s], /*withMasks=*/true);
+        StereoPair pair{ex.ref, ex.src, ex.cameras};
+        const Prediction prediction = predictor.predict(pair);
+        const RenderVolume ours(prediction.volume), mpiOnly(prediction.mpiOnly);
+
+        float observedMean[3];
+        meanColour(ex.ref, observedMean);
+        const float grey[3] = {kGreyFill, kGreyFill, kGreyFill};
+        const auto& firstGt = ex.envmaps.front();
+        const ImageRGB global = renderWithBackground(mpiOnly, ex.cameras.ref.position, firstGt.width,
+                                                     firstGt.height, observedMean);
+        std::unique_ptr<RenderVolume> oracle;
+        if (o.oracle) {
+            synth::BakeOptions bake;
+            const synth::Scene scene = synth::loadScene((fs::path(dirs[s]) / "scene.json").string(), &bake);
+            for (const auto& w : scene.windows) panoramas->get(w.panorama);
+            const synth::RayTracer tracer(scene);
+            const synth::RadianceField field(scene, tracer, *panoramas, bake);
+            const VolumeLayout layout = VolumeLayout::fromFarDepth(*ex.cameras.far, config.levels, config.resolution);
+            oracle = std::make_unique<RenderVolume>(synth::oracleVolume(scene, field, layout));
+        }
+
+        for (size_t e = 0; e < ex.envmaps.size(); ++e) {
+            const ImageRGB& gt = ex.envmaps[e];
+            const Vec3d position = ex.cameras.envmaps[e].position;
+            EnvmapOptions options;
+            options.width = gt.width;
+            options.height = gt.height;
+            std::vector<ImageRGB> predictions = {renderEnvmap(ours, position, options),
+                                                 renderWithBackground(mpiOnly, position, gt.width, gt.height, grey),
+                                                 resizeImage(global, gt.width, gt.height)};
+            if (oracle) predictions.push_back(renderEnvmap(*oracle, position, options));
+            for (size_t m = 0; m < predictions.size(); ++m) {
+                const EnvmapMetrics metrics = compareEnvmaps(predictions[m], gt, &ex.masks[e]);
+                auto& scores = report.methods[m];
+                scores.psnrAll.push_back(metrics.psnrAll);
+                scores.angularAll.push_back(metrics.angularAll);
+                scores.psnrObserved.push_back(metrics.psnrObserved);
+                scores.angularObserved.push_back(metrics.angularObserved);
+                csv << fs::path(dirs[s]).filename().string() << ',' << e << ",\"" << scores.name << "\","
+                    << metrics.psnrAll << ',' << metrics.angularAll << ',' << metrics.psnrObserved << ','
+                    << metrics.angularObserved << '\n';
+            }
+            if (sheetRows.size() < 12) {
+                std::vector<ImageRGB> row = {gt};
+                row.insert(row.end(), predictions.begin(), predictions.end());
+                sheetRows.push_back(std::move(row));
+            }
+        }
+        progress << "eval: " << s + 1 << "/" << dirs.size() << " scenes  (ours " << std::fixed << std::setprecision(2)
+                 << meanStd(report.methods[0].psnrAll).mean << " dB so far, predict " << prediction.seconds << " s)"
+                 << std::defaultfloat << std::endl;
+    }
+
+    std::ostringstream md;
+    md << "| method | PSNR all (dB) | angular all (deg) | PSNR observed (dB) | angular observed (deg) |\n"
+       << "|---|---|---|---|---|\n";
+    for (const auto& m : report.methods)
+        md << "| " << m.name << " | " << cell(m.psnrAll, 2) << " | " << cell(m.angularAll, 2) << " | "
+           << cell(m.psnrObserved, 2) << " | " << cell(m.angularObserved, 2) << " |\n";
+    md << "\n" << report.methods[0].psnrAll.size() << " envmaps (" << dirs.size()
+       << " scenes) of `" << o.data << "`, model config `" << config.name << "`; mean +- std.\n";
+    report.markdown = md.str();
+    writeTextFile((fs::path(o.out) / "table.md").string(), report.markdown);
+    writeTextFile((fs::path(o.out) / "metrics.csv").string(), csv.str());
+    writePng(contactSheet(sheetRows, 90), (fs::path(o.out) / "contact_sheet.png").string());
+    progress << "eval: columns of contact_sheet.png: ground truth | ours | MPI only | global envmap"
+             << (o.oracle ? " | oracle" : "") << "\n";
+    return report;
+}
+
+}  // namespace lh::net

@@ -1,0 +1,59 @@
+// The whole prediction model: the MPI network and one completion network per level, and the
+// differentiable pipeline that runs them (SPEC.md steps 2-6).
+#pragma once
+
+#include "core/camera.h"
+#include "net/config.h"
+#include "net/torch_pch.h"
+#include "net/unet3d.h"
+#include "render/image.h"
+#include "vdb/volume_layout.h"
+
+#include <vector>
+
+namespace lh::net {
+
+// What the pipeline needs for one stereo pair, already at the network's input size.
+struct PairInputs {
+    torch::Tensor refEncoded, srcEncoded;  // [1, 3, H, W] sRGB-encoded, in [0, 1]
+    torch::Tensor refLinear;               // [1, 3, H, W] linear
+    PinholeCamera ref, src;                // intrinsics of the resized images
+    std::vector<double> depths;            // plane depths, far to near
+    VolumeLayout layout;
+};
+
+struct PipelineOutput {
+    torch::Tensor mpi;                    // [1, 4, D, H, W]: linear RGB, alpha
+    std::vector<torch::Tensor> mpiCubes;  // resampled MPI per level, [1, 4, R, R, R]
+    std::vector<torch::Tensor> cubes;     // completed levels (empty if not run)
+};
+
+struct LighthouseNetImpl : torch::nn::Module {
+    explicit LighthouseNetImpl(const NetConfig& config);
+    NetConfig config;
+    UNet3d mpiNet{nullptr};
+    std::vector<UNet3d> completion;  // coarsest first
+
+    // The MPI from the plane-sweep volume [1, 6, D, H, W] and the linear reference image.
+    torch::Tensor predictMpi(const torch::Tensor& psv, const torch::Tensor& refLinear);
+    // Completed levels, coarse to fine, each blended with its input cube by a predicted weight.
+    std::vector<torch::Tensor> complete(const std::vector<torch::Tensor>& inputCubes);
+    PipelineOutput run(const PairInputs& inputs, bool runCompletion = true);
+};
+TORCH_MODULE(LighthouseNet);
+
+// Network inputs for a pair of linear images at any size: resized to the configuration's input
+// size (intrinsics scaled), planes linear in disparity between near and far, and the layout
+// of the volume (CONVENTIONS.md: s0 = 2 min(far, 20)).
+PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const PinholeCamera& refCamera,
+                          const PinholeCamera& srcCamera, double near, double far, const NetConfig& config,
+                          const torch::Device& device);
+
+// The part of completed level k-1 that level k covers, upsampled 2x (nearest): [1, C, R, R, R].
+torch::Tensor cropCoarserLevel(const torch::Tensor& coarser, int coarserLevel);
+
+// Model files: the configuration and every parameter, written atomically.
+void saveModel(LighthouseNet& net, const std::string& path);
+LighthouseNet loadModel(const std::string& path, const torch::Device& device);
+
+}  // namespace lh::net

@@ -1,0 +1,82 @@
+#include "net/predictor.h"
+
+#include "core/errors.h"
+#include "net/device.h"
+#include "net/lighthouse_net.h"
+#include "net/volume_export.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace lh::net {
+
+std::string defaultModelPath() { return LIGHTHOUSE_DEFAULT_MODEL; }
+
+void validateStereoPair(const StereoPair& pair) {
+    const CamerasFile& c = pair.cameras;
+    if (!c.src) throw InputError("cameras.json has no 'src' camera: prediction needs the second image's camera");
+    const auto checkImage = [](const ImageRGB& im, const PinholeCamera& cam, const char* name) {
+        if (im.width != cam.width || im.height != cam.height)
+            throw InputError(std::string(name) + " image is " + std::to_string(im.width) + "x" +
+                             std::to_string(im.height) + " but cameras.json says " + std::to_string(cam.width) +
+                             "x" + std::to_string(cam.height));
+        for (float v : im.pixels)
+            if (!std::isfinite(v)) throw InputError(std::string(name) + " image holds NaN or infinite values");
+    };
+    checkImage(pair.ref, c.ref, "reference");
+    checkImage(pair.src, *c.src, "source");
+    const double baseline = (c.src->position - c.ref.position).length();
+    if (!(baseline > 1e-9))
+        throw InputError("the two cameras are at the same place (zero baseline): a stereo pair needs two viewpoints");
+    if (c.near && c.far && !(*c.near > 0 && *c.far > *c.near))
+        throw InputError("cameras.json needs 0 < near < far");
+}
+
+struct Predictor::Impl {
+    torch::Device device{torch::kCPU};
+    LighthouseNet net{nullptr};
+};
+
+Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<Impl>()) {
+    setTorchThreads(options.threads);
+    impl_->device = selectDevice(options.device);
+    if (!options.untrainedConfig.empty()) {
+        impl_->net = LighthouseNet(NetConfig::byName(options.untrainedConfig));
+        impl_->net->to(impl_->device);
+        impl_->net->eval();
+    } else {
+        impl_->net = loadModel(options.model.empty() ? defaultModelPath() : options.model, impl_->device);
+    }
+}
+
+Predictor::~Predictor() = default;
+
+const NetConfig& Predictor::config() const { return impl_->net->config; }
+
+Prediction Predictor::predict(const StereoPair& pair) const {
+    validateStereoPair(pair);
+    Prediction result;
+    const CamerasFile& cams = pair.cameras;
+    if (cams.near && cams.far) {
+        result.range.near = *cams.near;
+        result.range.far = *cams.far;
+    } else {
+        result.range = estimateDepthRange(pair.ref, pair.src, cams.ref, *cams.src);
+        result.rangeEstimated = true;
+    }
+    const NetConfig& config = impl_->net->config;
+    const auto start = std::chrono::steady_clock::now();
+    const PairInputs inputs = makePairInputs(pair.ref, pair.src, cams.ref, *cams.src, result.range.near,
+                                             result.range.far, config, impl_->device);
+    torch::NoGradGuard noGrad;
+    const PipelineOutput out = impl_->net->run(inputs, true);
+    result.volume = cubesToVolume(out.cubes, inputs.layout);
+    result.mpiOnly = cubesToVolume(out.mpiCubes, inputs.layout);
+    result.mpi = tensorToMpi(out.mpi, inputs.ref, inputs.depths);
+    result.volume.refCamera = cams.ref;
+    result.mpiOnly.refCamera = cams.ref;
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace lh::net

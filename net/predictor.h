@@ -1,0 +1,66 @@
+// Prediction from a stereo pair: the public, torch-free face of the network (the CLI and the
+// evaluation use it without including libtorch).
+//
+//   stereo pair + cameras -> depth range (cameras.json, else estimated from the pair)
+//   -> plane-sweep volume -> MPI -> resampled cubes -> completed cubes -> LightingVolume.
+#pragma once
+
+#include "core/camera.h"
+#include "net/config.h"
+#include "net/depth_range.h"
+#include "render/image.h"
+#include "vdb/lighting_volume.h"
+#include "vdb/mpi.h"
+
+#include <memory>
+#include <string>
+
+namespace lh::net {
+
+struct StereoPair {
+    ImageRGB ref, src;     // linear (PNG/JPEG inputs decoded from sRGB)
+    CamerasFile cameras;   // ref and src required; near/far optional
+};
+
+// Throws InputError naming what is wrong: no src camera, image sizes that differ from the
+// cameras, NaN or infinite pixels, a zero baseline (the pair cannot see depth), or a near/far
+// pair that is not 0 < near < far.
+void validateStereoPair(const StereoPair& pair);
+
+struct Prediction {
+    LightingVolume volume;   // completed levels, the lighting volume
+    LightingVolume mpiOnly;  // the MPI resampled onto the levels, no completion (an ablation)
+    Mpi mpi;                 // in the reference camera, at the network's input size
+    DepthRange range;        // used depth range; votes/fallback set when it was estimated
+    bool rangeEstimated = false;
+    double seconds = 0;      // network time, wall clock
+};
+
+struct PredictorOptions {
+    std::string model;        // empty: the bundled model (models/small.pt)
+    std::string device = "cpu";
+    int threads = 0;          // 0: every core
+    // Timing only: random weights of this configuration ("small" or "paper") instead of a
+    // model file, so both configurations can be timed without training the paper-sized one.
+    std::string untrainedConfig;
+};
+
+// The bundled model's path.
+std::string defaultModelPath();
+
+class Predictor {
+public:
+    explicit Predictor(const PredictorOptions& options);
+    ~Predictor();
+    Predictor(const Predictor&) = delete;
+    Predictor& operator=(const Predictor&) = delete;
+
+    const NetConfig& config() const;
+    Prediction predict(const StereoPair& pair) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lh::net

@@ -1,0 +1,327 @@
+#include "net/trainer.h"
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "core/random.h"
+#include "net/curve_plot.h"
+#include "net/device.h"
+#include "net/lighthouse_net.h"
+#include "net/losses.h"
+#include "net/mpi_render.h"
+#include "net/tensor_image.h"
+#include "net/training_data.h"
+#include "net/volume_render.h"
+#include "render/contact_sheet.h"
+#include "render/metrics.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace lh::net {
+
+void TrainOptions::validate() const {
+    if (iterations < 1) throw InputError("--iterations must be at least 1");
+    if (!(learningRate > 0 && learningRate < 1)) throw InputError("--lr must be in (0, 1)");
+    if (validateEvery < 1 || checkpointEvery < 1 || logEvery < 1)
+        throw InputError("--validate-every, --checkpoint-every and --log-every must be at least 1");
+    if (validationScenes < 1) throw InputError("--validation-scenes must be at least 1");
+    NetConfig::byName(config).validate();
+}
+
+namespace {
+
+constexpr double kStage2Start = 0.25, kStage3Start = 0.9, kLowLearningRateStart = 0.8;
+constexpr double kAdversarialWeight = 0.1, kGradientClipNorm = 5.0;
+
+struct LogRow {
+    int iteration = 0, stage = 1;
+    double total = 0, view = 0, envmap = 0, adversarial = 0, discriminator = 0;
+    double learningRate = 0, itPerSecond = 0;
+    double valPsnr = NAN, valAngular = NAN;
+};
+
+int stageAt(int iteration, int total) {
+    if (iteration >= int(kStage3Start * total)) return 3;
+    if (iteration >= int(kStage2Start * total)) return 2;
+    return 1;
+}
+
+struct TrainingState {
+    LighthouseNet net{nullptr};
+    PatchDiscriminator discriminator{nullptr};
+    std::unique_ptr<torch::optim::Adam> optimizer, discriminatorOptimizer;
+    int iteration = 0;
+    std::vector<LogRow> log;
+};
+
+void setLearningRate(torch::optim::Adam& optimizer, double lr) {
+    for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
+}
+
+std::string checkpointPath(const TrainOptions& o) { return o.out + ".checkpoint"; }
+
+void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
+    torch::serialize::OutputArchive archive, net, disc, opt, discOpt;
+    s.net->save(net);
+    s.discriminator->save(disc);
+    s.optimizer->save(opt);
+    s.discriminatorOptimizer->save(discOpt);
+    archive.write("net", net);
+    archive.write("discriminator", disc);
+    archive.write("optimizer", opt);
+    archive.write("discriminator_optimizer", discOpt);
+    archive.write("iteration", c10::IValue(int64_t(s.iteration)));
+    archive.write("config", c10::IValue(s.net->config.toJson()));
+    const std::string temporary = checkpointPath(o) + ".partial";
+    archive.save_to(temporary);
+    fs::rename(temporary, checkpointPath(o));
+    saveModel(s.net, o.out);
+}
+
+bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
+    if (!o.resume || !fs::is_regular_file(checkpointPath(o))) return false;
+    torch::serialize::InputArchive archive, net, disc, opt, discOpt;
+    try {
+        archive.load_from(checkpointPath(o));
+        c10::IValue config, iteration;
+        archive.read("config", config);
+        if (NetConfig::fromJson(config.toStringRef(), checkpointPath(o)).toJson() != s.net->config.toJson())
+            throw FileError("checkpoint '" + checkpointPath(o) + "' was trained with another configuration; delete it or pick another --out");
+        archive.read("net", net);
+        archive.read("discriminator", disc);
+        archive.read("optimizer", opt);
+        archive.read("discriminator_optimizer", discOpt);
+        archive.read("iteration", iteration);
+        s.net->load(net);
+        s.discriminator->load(disc);
+        s.optimizer->load(opt);
+        s.discriminatorOptimizer->load(discOpt);
+        s.iteration = int(iteration.toInt());
+    } catch (const c10::Error& e) {
+        throw FileError("checkpoint '" + checkpointPath(o) + "' is unreadable (" +
+                        std::string(e.what_without_backtrace()).substr(0, 200) + "); delete it to start afresh");
+    }
+    return true;
+}
+
+void writeLog(const TrainOptions& o, const std::vector<LogRow>& log) {
+    std::ostringstream csv;
+    csv << "iteration,stage,loss_total,loss_view,loss_envmap,loss_adversarial,loss_discriminator,lr,it_per_s,"
+           "val_psnr_db,val_angular_deg\n";
+    for (const auto& r : log)
+        csv << r.iteration << ',' << r.stage << ',' << r.total << ',' << r.view << ',' << r.envmap << ','
+            << r.adversarial << ',' << r.discriminator << ',' << r.learningRate << ',' << r.itPerSecond << ','
+            << r.valPsnr << ',' << r.valAngular << '\n';
+    writeTextFile(o.out + ".csv", csv.str());
+    CurveSeries total{"training loss (view + envmap + adversarial)", {}, {}};
+    CurveSeries view{"held-out view loss", {}, {}}, env{"envmap loss", {}, {}};
+    CurveSeries psnr{"validation envmap PSNR (dB), all content", {}, {}};
+    CurveSeries angular{"validation RGB angular error (deg)", {}, {}};
+    for (const auto& r : log) {
+        total.x.push_back(r.iteration), total.y.push_back(r.total);
+        view.x.push_back(r.iteration), view.y.push_back(r.view);
+        if (r.stage >= 2) env.x.push_back(r.iteration), env.y.push_back(r.envmap);
+        if (std::isfinite(r.valPsnr)) {
+            psnr.x.push_back(r.iteration), psnr.y.push_back(r.valPsnr);
+            angular.x.push_back(r.iteration), angular.y.push_back(r.valAngular);
+        }
+    }
+    writeCurvePlot(o.out + ".png", "lighthouse train: " + fs::path(o.out).filename().string(), "iteration",
+                   {total, view, env, psnr, angular});
+}
+
+// Mean envmap PSNR and angular error (all content) of the current model on held-out scenes,
+// rendered with the training renderer at the ground truth's size.
+std::pair<double, double> validate(LighthouseNet& net, const std::vector<TrainingExample>& scenes,
+                                   const torch::Device& device) {
+    torch::NoGradGuard noGrad;
+    net->eval();
+    std::vector<double> psnrs, angles;
+    for (const auto& ex : scenes) {
+        const PairInputs in = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
+                                             *ex.cameras.far, net->config, device);
+        const PipelineOutput out = net->run(in, true);
+        for (size_t e = 0; e < ex.envmaps.size(); ++e) {
+            const auto& gt = ex.envmaps[e];
+            const ImageRGB pred = tensorToImage(renderEnvmapTorch(out.cubes, in.layout, ex.cameras.envmaps[e].position,
+                                                                  gt.width, gt.height, net->config.samplesPerLevel));
+            const EnvmapMetrics m = compareEnvmaps(pred, gt);
+            psnrs.push_back(m.psnrAll);
+            angles.push_back(m.angularAll);
+        }
+    }
+    net->train();
+    return {meanStd(psnrs).mean, meanStd(angles).mean};
+}
+
+std::string formatDuration(double seconds) {
+    const int s = int(std::max(0.0, seconds));
+    std::ostringstream out;
+    out << s / 3600 << "h" << std::setw(2) << std::setfill('0') << (s / 60) % 60 << "m" << std::setw(2) << s % 60 << "s";
+    return out.str();
+}
+
+}  // namespace
+
+void train(const TrainOptions& o, std::ostream& progress) {
+    o.validate();
+    setTorchThreads(o.threads);
+    const torch::Device device = selectDevice(o.device);
+    torch::manual_seed(o.seed);
+
+    std::vector<std::string> trainDirs = listExamples(o.data), validationDirs;
+    if (!o.validation.empty()) {
+        validationDirs = listExamples(o.validation);
+    } else {
+        if (trainDirs.size() < 2) throw InputError("need at least 2 examples to hold one out for validation (or pass --val)");
+        const size_t held = std::max<size_t>(1, trainDirs.size() / 20);
+        validationDirs.assign(trainDirs.end() - long(held), trainDirs.end());
+        trainDirs.resize(trainDirs.size() - held);
+    }
+    std::vector<TrainingExample> validationScenes;
+    for (size_t i = 0; i < validationDirs.size() && int(i) < o.validationScenes; ++i)
+        validationScenes.push_back(loadExample(validationDirs[i]));
+    if (!fs::path(o.out).parent_path().empty()) fs::create_directories(fs::path(o.out).parent_path());
+
+    TrainingState s;
+    s.net = LighthouseNet(NetConfig::byName(o.config));
+    s.net->to(device);
+    s.discriminator = PatchDiscriminator();
+    s.discriminator->to(device);
+    s.optimizer = std::make_unique<torch::optim::Adam>(s.net->parameters(), torch::optim::AdamOptions(o.learningRate));
+    s.discriminatorOptimizer = std::make_unique<torch::optim::Adam>(
+        s.discriminator->parameters(), torch::optim::AdamOptions(o.learningRate).betas({0.0, 0.9}));
+    if (loadCheckpoint(o, s)) {
+        progress << "train: resuming from " << checkpointPath(o) << " at iteration " << s.iteration << "\n";
+        // Earlier log rows come back from the CSV so the curves stay whole.
+        std::ifstream csv(o.out + ".csv");
+        std::string line;
+        std::getline(csv, line);
+        while (std::getline(csv, line)) {
+            LogRow r;
+            char comma;
+            std::istringstream row(line);
+            std::string vp, va;
+            row >> r.iteration >> comma >> r.stage >> comma >> r.total >> comma >> r.view >> comma >> r.envmap >>
+                comma >> r.adversarial >> comma >> r.discriminator >> comma >> r.learningRate >> comma >> r.itPerSecond >>
+                comma;
+            std::getline(row, vp, ',');
+            std::getline(row, va);
+            r.valPsnr = vp == "nan" ? NAN : std::atof(vp.c_str());
+            r.valAngular = va == "nan" ? NAN : std::atof(va.c_str());
+            if (r.iteration <= s.iteration) s.log.push_back(r);
+        }
+    }
+    const NetConfig& config = s.net->config;
+    Random rng(mixSeed(o.seed, uint64_t(s.iteration)));  // a resumed run draws fresh examples
+    progress << "train: config " << config.name << " (" << config.width << "x" << config.height << " input, "
+             << config.planes << " planes, " << config.levels << " x " << config.resolution << "^3), "
+             << trainDirs.size() << " training scenes, " << validationDirs.size() << " held out ("
+             << validationScenes.size() << " validated), " << torch::get_num_threads() << " threads on "
+             << device.str() << "\n";
+
+    s.net->train();
+    LogRow window;
+    int windowCount = 0;
+    auto windowStart = std::chrono::steady_clock::now();
+    const auto runStart = windowStart;
+    const int firstIteration = s.iteration;
+    for (; s.iteration < o.iterations; ++s.iteration) {
+        const int it = s.iteration;
+        const int stage = stageAt(it, o.iterations);
+        const double lr = it >= int(kLowLearningRateStart * o.iterations) ? o.learningRate / 10 : o.learningRate;
+        setLearningRate(*s.optimizer, lr);
+        setLearningRate(*s.discriminatorOptimizer, lr);
+
+        const TrainingExample ex = loadExample(trainDirs[size_t(rng.integer(0, int(trainDirs.size()) - 1))]);
+        const PairInputs in = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
+                                             *ex.cameras.far, config, device);
+        const PipelineOutput out = s.net->run(in, stage >= 2);
+        const PinholeCamera tgt = resizedCamera(*ex.cameras.tgt, config.width, config.height);
+        const auto tgtImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
+        const auto viewLoss = imageLoss(renderMpiView(out.mpi, in.depths, in.ref, tgt), tgtImage);
+        auto loss = viewLoss;
+        torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}), discLoss = torch::zeros({});
+        if (stage >= 2) {
+            const size_t e = size_t(rng.integer(0, int(ex.envmaps.size()) - 1));
+            const auto gt = imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight)).to(device);
+            const auto env = renderEnvmapTorch(out.cubes, in.layout, ex.cameras.envmaps[e].position, config.trainEnvWidth,
+                                               config.trainEnvHeight, config.samplesPerLevel);
+            envLoss = imageLoss(env, gt);
+            loss = loss + envLoss;
+            if (stage >= 3) {
+                // Discriminator step on real vs (detached) predicted envmaps, then the generator term.
+                s.discriminatorOptimizer->zero_grad();
+                discLoss = discriminatorHingeLoss(s.discriminator(srgbEncodeTensor(gt)),
+                                                  s.discriminator(srgbEncodeTensor(env.detach())));
+                discLoss.backward();
+                zeroNonFiniteGradients(s.discriminator->parameters());
+                s.discriminatorOptimizer->step();
+                advLoss = generatorHingeLoss(s.discriminator(srgbEncodeTensor(env)));
+                loss = loss + kAdversarialWeight * advLoss;
+            }
+        }
+        s.optimizer->zero_grad();
+        loss.backward();
+        zeroNonFiniteGradients(s.net->parameters());
+        torch::nn::utils::clip_grad_norm_(s.net->parameters(), kGradientClipNorm);
+        s.optimizer->step();
+        s.discriminator->zero_grad();  // the generator term left gradients in the discriminator
+
+        window.total += loss.item<double>();
+        window.view += viewLoss.item<double>();
+        window.envmap += envLoss.item<double>();
+        window.adversarial += advLoss.item<double>();
+        window.discriminator += discLoss.item<double>();
+        ++windowCount;
+
+        const int done = it + 1;
+        const bool logNow = done % o.logEvery == 0 || done == o.iterations;
+        const bool validateNow = done % o.validateEvery == 0 || done == o.iterations;
+        if (logNow) {
+            const auto now = std::chrono::steady_clock::now();
+            LogRow row;
+            row.iteration = done;
+            row.stage = stage;
+            row.total = window.total / windowCount;
+            row.view = window.view / windowCount;
+            row.envmap = window.envmap / windowCount;
+            row.adversarial = window.adversarial / windowCount;
+            row.discriminator = window.discriminator / windowCount;
+            row.learningRate = lr;
+            row.itPerSecond = windowCount / std::chrono::duration<double>(now - windowStart).count();
+            if (validateNow) std::tie(row.valPsnr, row.valAngular) = validate(s.net, validationScenes, device);
+            const double elapsed = std::chrono::duration<double>(now - runStart).count();
+            const double eta = elapsed / std::max(1, done - firstIteration) * (o.iterations - done);
+            progress << "train: it " << done << "/" << o.iterations << "  stage " << stage << "  loss " << std::fixed
+                     << std::setprecision(4) << row.total << " (view " << row.view << ", envmap " << row.envmap
+                     << ", adv " << row.adversarial << ")  " << std::setprecision(2) << row.itPerSecond << " it/s  ETA "
+                     << formatDuration(eta);
+            if (validateNow) progress << "  val PSNR " << row.valPsnr << " dB, angular " << row.valAngular << " deg";
+            progress << std::defaultfloat << std::endl;
+            s.log.push_back(row);
+            window = LogRow{};
+            windowCount = 0;
+            windowStart = std::chrono::steady_clock::now();
+            if (validateNow) writeLog(o, s.log);
+        }
+        if (done % o.checkpointEvery == 0 || done == o.iterations) {
+            s.iteration = done;
+            saveCheckpoint(o, s);
+            s.iteration = it;
+        }
+    }
+    s.iteration = o.iterations;
+    saveModel(s.net, o.out);
+    writeLog(o, s.log);
+    progress << "train: wrote " << o.out << " (log " << o.out << ".csv, curves " << o.out << ".png)\n";
+}
+
+}  // namespace lh::net

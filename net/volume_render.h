@@ -1,0 +1,29 @@
+// Differentiable envmap rendering for training, in the density/colour convention of
+// CONVENTIONS.md, so that it and the C++ ray marcher integrate the same medium.
+//
+// Like the paper, each level is sampled on `samplesPerLevel` concentric spheres around the
+// query point, evenly spaced out to the level's farthest corner. Unlike the paper, a sample
+// counts only where its level is the finest one containing it (finest wins, no zeroed coarse
+// voxels), sigma and premultiplied emission sigma * colour are interpolated trilinearly, and
+// each sample integrates exactly over its shell thickness dt:
+//   L += T * colour * (1 - exp(-sigma dt)),  T *= exp(-sigma dt),
+// with colour = emission / sigma; nothing is added behind the volume.
+#pragma once
+
+#include "core/camera.h"
+#include "net/torch_pch.h"
+#include "vdb/volume_layout.h"
+
+#include <vector>
+
+namespace lh::net {
+
+// Unit directions of every envmap pixel (CONVENTIONS.md layout), [H, W, 3], float64.
+torch::Tensor envmapDirections(int width, int height);
+
+// cubes: per level (coarsest first) [1, 4, R, R, R] linear RGB + voxel alpha.
+// Returns the envmap at `position` (world frame), [1, 3, height, width].
+torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const VolumeLayout& layout,
+                                const Vec3d& position, int width, int height, int samplesPerLevel);
+
+}  // namespace lh::net

@@ -1,0 +1,83 @@
+# Command-line tests of `lighthouse predict`, `train` and `eval` (included by CMakeLists.txt
+# when the network is built). The pair is the bundled demo pair; broken cameras files are
+# derived from its cameras.json here.
+set(LH_PAIR ${PROJECT_SOURCE_DIR}/data/demo_pair)
+file(READ ${LH_PAIR}/cameras.json LH_PAIR_CAMERAS)
+string(JSON LH_REF_CAMERA GET "${LH_PAIR_CAMERAS}" ref)
+string(JSON LH_ZERO_BASELINE SET "${LH_PAIR_CAMERAS}" src "${LH_REF_CAMERA}")
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/pair_zero_baseline.json "${LH_ZERO_BASELINE}")
+string(JSON LH_NO_RANGE REMOVE "${LH_PAIR_CAMERAS}" near)
+string(JSON LH_NO_RANGE REMOVE "${LH_NO_RANGE}" far)
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/pair_no_range.json "${LH_NO_RANGE}")
+set(LH_PAIR_ARGS --ref ${LH_PAIR}/ref.png --src ${LH_PAIR}/src.png)
+# libtorch reserves a lot of address space at start-up: allow it.
+set(LH_TORCH_MB 16384)
+
+lighthouse_cli_error(predict_zero_baseline
+  EXPECT "same place [(]zero baseline[)]"
+  ABSENT pred_bad1.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${CMAKE_CURRENT_BINARY_DIR}/pair_zero_baseline.json -o pred_bad1.vdb)
+lighthouse_cli_error(predict_image_camera_mismatch
+  EXPECT "reference image is 320x240 but cameras[.]json says 64x48"
+  ABSENT pred_bad2.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras cameras_ok.json -o pred_bad2.vdb)
+lighthouse_cli_error(predict_missing_image
+  EXPECT "no_such_ref[.]png"
+  ABSENT pred_bad3.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict --ref no_such_ref.png --src ${LH_PAIR}/src.png --cameras ${LH_PAIR}/cameras.json -o pred_bad3.vdb)
+lighthouse_cli_error(predict_missing_model
+  EXPECT "model file 'no_such_model[.]pt' not found"
+  ABSENT pred_bad4.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --model no_such_model.pt -o pred_bad4.vdb)
+lighthouse_cli_error(predict_not_a_model
+  EXPECT "not a readable model file"
+  ABSENT pred_bad5.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --model cameras_ok.json -o pred_bad5.vdb)
+lighthouse_cli_error(predict_unknown_device
+  EXPECT "unknown device"
+  ABSENT pred_bad6.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --device tpu -o pred_bad6.vdb)
+lighthouse_cli_error(predict_cuda_absent
+  EXPECT "no CUDA"
+  ABSENT pred_bad7.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --device cuda -o pred_bad7.vdb)
+lighthouse_cli_error(predict_output_not_vdb
+  EXPECT "must end in [.]vdb"
+  ABSENT pred_bad8.png
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json -o pred_bad8.png)
+lighthouse_cli_error(train_missing_data
+  EXPECT "data directory 'no_such_dir' not found"
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS train --data no_such_dir --out train_bad.pt)
+lighthouse_cli_error(train_unknown_config
+  EXPECT "unknown configuration 'huge'"
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS train --data . --config huge --out train_bad.pt)
+lighthouse_cli_error(eval_not_a_data_set
+  EXPECT "holds no examples"
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS eval --data . -o eval_bad)
+
+if(EXISTS ${PROJECT_SOURCE_DIR}/models/small.pt)
+  # The bundled model, depth range from cameras.json and estimated from the pair.
+  lighthouse_cli_ok(predict_bundled_model
+    FILES pred_ok.vdb
+    PNG pred_ok_000.png
+    ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --envmap-at 0.3,0.3,1.1 -o pred_ok.vdb)
+  lighthouse_cli_ok(predict_estimated_range
+    FILES pred_est.vdb
+    ARGS predict ${LH_PAIR_ARGS} --cameras ${CMAKE_CURRENT_BINARY_DIR}/pair_no_range.json -o pred_est.vdb)
+  lighthouse_cli_ok(predict_output_is_a_volume
+    STDOUT "4 level[(]s[)]" "density_L3, color_L3, finest yes"
+    ARGS info pred_ok.vdb)
+  set_tests_properties(cli.ok.predict_bundled_model PROPERTIES FIXTURES_SETUP lighthouse_predicted)
+  set_tests_properties(cli.ok.predict_output_is_a_volume PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_predicted")
+endif()

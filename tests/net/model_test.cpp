@@ -1,0 +1,177 @@
+// The networks as a whole: shapes and ranges of every stage, gradients from the envmap loss
+// into the MPI network, a few optimisation steps that lower the loss, and model files.
+#include "net/lighthouse_net.h"
+#include "net/losses.h"
+#include "net/mpi_render.h"
+#include "net/tensor_image.h"
+#include "net/volume_render.h"
+#include "tests/net/net_test_scenes.h"
+
+#include <gtest/gtest.h>
+
+#include "core/errors.h"
+
+#include <filesystem>
+#include <fstream>
+
+namespace lh::net {
+namespace {
+
+using test::planeCamera;
+using test::renderPlane;
+using test::tinyConfig;
+
+PairInputs tinyPair(const NetConfig& config) {
+    const PinholeCamera ref = planeCamera(64, 32), src = planeCamera(64, 32, Vec3d(0.2, 0.0, 0.0));
+    return makePairInputs(renderPlane(ref, 2.0), renderPlane(src, 2.0), ref, src, 1.0, 4.0, config,
+                          torch::Device(torch::kCPU));
+}
+
+bool allIn(const torch::Tensor& t, double lo, double hi) {
+    return torch::isfinite(t).all().item<bool>() && t.min().item<double>() >= lo && t.max().item<double>() <= hi;
+}
+
+TEST(Model, EveryStageHasItsShapeAndRange) {
+    torch::manual_seed(0);
+    const NetConfig config = tinyConfig();
+    LighthouseNet net(config);
+    const PairInputs in = tinyPair(config);
+    EXPECT_EQ(in.refEncoded.sizes(), (std::vector<int64_t>{1, 3, 16, 32}));
+    EXPECT_EQ(in.depths.size(), 16u);
+    EXPECT_GT(in.depths.front(), in.depths.back());  // far to near
+    const PipelineOutput out = net->run(in);
+    EXPECT_EQ(out.mpi.sizes(), (std::vector<int64_t>{1, 4, 16, 16, 32}));
+    EXPECT_TRUE(allIn(out.mpi, 0, 1));
+    ASSERT_EQ(out.cubes.size(), 2u);
+    for (int k = 0; k < 2; ++k) {
+        EXPECT_EQ(out.mpiCubes[size_t(k)].sizes(), (std::vector<int64_t>{1, 4, 16, 16, 16}));
+        EXPECT_EQ(out.cubes[size_t(k)].sizes(), (std::vector<int64_t>{1, 4, 16, 16, 16}));
+        EXPECT_TRUE(allIn(out.mpiCubes[size_t(k)], 0, 1));
+        EXPECT_TRUE(allIn(out.cubes[size_t(k)], 0, 1));
+    }
+    const auto env = renderEnvmapTorch(out.cubes, in.layout, Vec3d(0, 0, 1), 16, 8, 32);
+    EXPECT_EQ(env.sizes(), (std::vector<int64_t>{1, 3, 8, 16}));
+    EXPECT_TRUE(allIn(env, 0, 1));
+    const auto view = renderMpiView(out.mpi, in.depths, in.ref, in.ref);
+    EXPECT_EQ(view.sizes(), (std::vector<int64_t>{1, 3, 16, 32}));
+    EXPECT_TRUE(allIn(view, 0, 1));
+}
+
+TEST(Model, CropOfTheCoarserLevelCoversTheFinerLevel) {
+    // Level 1 covers x, y in the middle half and z in the front half of level 0; level 2 the
+    // back half in z of level 1.
+    auto coarse = torch::zeros({1, 1, 8, 8, 8});
+    coarse[0][0][4][2][2] = 1.0;  // z = 4 (front half), y = 2, x = 2: the crop's first voxel
+    const auto up0 = cropCoarserLevel(coarse, 0);
+    EXPECT_EQ(up0.sizes(), (std::vector<int64_t>{1, 1, 8, 8, 8}));
+    EXPECT_EQ(up0.sum().item<double>(), 8.0);  // one voxel -> a 2x2x2 block
+    EXPECT_EQ(up0[0][0][1][1][1].item<double>(), 1.0);
+    auto coarse1 = torch::zeros({1, 1, 8, 8, 8});
+    coarse1[0][0][3][5][5] = 1.0;  // back half in z for levels >= 1
+    const auto up1 = cropCoarserLevel(coarse1, 1);
+    EXPECT_EQ(up1[0][0][7][7][7].item<double>(), 1.0);
+}
+
+TEST(Model, EnvmapLossReachesTheMpiNetwork) {
+    torch::manual_seed(1);
+    const NetConfig config = tinyConfig();
+    LighthouseNet net(config);
+    const PairInputs in = tinyPair(config);
+    const PipelineOutput out = net->run(in);
+    const auto env = renderEnvmapTorch(out.cubes, in.layout, Vec3d(0.1, 0, 1.5), 16, 8, 32);
+    imageLoss(env, torch::full_like(env, 0.3)).backward();
+    double mpiGradient = 0;
+    for (const auto& p : net->mpiNet->parameters())
+        if (p.grad().defined()) mpiGradient += p.grad().abs().sum().item<double>();
+    EXPECT_GT(mpiGradient, 0.0);
+    double completionGradient = 0;
+    for (const auto& p : net->completion[0]->parameters())
+        if (p.grad().defined()) completionGradient += p.grad().abs().sum().item<double>();
+    EXPECT_GT(completionGradient, 0.0);
+}
+
+TEST(Model, FewStepsOnATinySceneLowerTheLoss) {
+    torch::manual_seed(2);
+    const NetConfig config = tinyConfig();
+    LighthouseNet net(config);
+    const PairInputs in = tinyPair(config);
+    const PinholeCamera tgtFull = planeCamera(64, 32, Vec3d(-0.1, 0.05, 0.1));
+    const PinholeCamera tgt = resizedCamera(tgtFull, config.width, config.height);
+    const auto tgtImage = imageToTensor(renderPlane(tgt, 2.0));
+    const auto envTarget = torch::full({1, 3, 8, 16}, 0.25);
+    torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(2e-3));
+    const auto loss = [&] {
+        const PipelineOutput out = net->run(in);
+        return imageLoss(renderMpiView(out.mpi, in.depths, in.ref, tgt), tgtImage) +
+               imageLoss(renderEnvmapTorch(out.cubes, in.layout, Vec3d(0, 0, 1), 16, 8, 32), envTarget);
+    };
+    const double first = loss().item<double>();
+    for (int step = 0; step < 25; ++step) {
+        optimizer.zero_grad();
+        auto l = loss();
+        l.backward();
+        zeroNonFiniteGradients(net->parameters());
+        optimizer.step();
+    }
+    const double last = loss().item<double>();
+    EXPECT_LT(last, 0.8 * first) << "first " << first << " last " << last;
+}
+
+TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
+    torch::manual_seed(3);
+    LighthouseNet net(tinyConfig());
+    net->eval();
+    const std::string path = (std::filesystem::temp_directory_path() / "lighthouse_model_test.pt").string();
+    saveModel(net, path);
+    LighthouseNet loaded = loadModel(path, torch::Device(torch::kCPU));
+    EXPECT_EQ(loaded->config.toJson(), tinyConfig().toJson());
+    const PairInputs in = tinyPair(net->config);
+    torch::NoGradGuard noGrad;
+    const PipelineOutput a = net->run(in), b = loaded->run(in);
+    EXPECT_TRUE(torch::equal(a.mpi, b.mpi));
+    for (size_t k = 0; k < a.cubes.size(); ++k) EXPECT_TRUE(torch::equal(a.cubes[k], b.cubes[k]));
+    std::filesystem::remove(path);
+}
+
+TEST(Model, NotAModelFileIsAClearError) {
+    const std::string path = (std::filesystem::temp_directory_path() / "lighthouse_not_a_model.pt").string();
+    { std::ofstream(path) << "hello"; }
+    EXPECT_THROW(loadModel(path, torch::Device(torch::kCPU)), FileError);
+    EXPECT_THROW(loadModel(path + ".missing", torch::Device(torch::kCPU)), FileError);
+    std::filesystem::remove(path);
+}
+
+TEST(Losses, SpectralNormBoundsTheLayerGain) {
+    torch::manual_seed(4);
+    SpectralConv2d conv(3, 8, 1);
+    conv->weight.data().mul_(50.0);  // a layer with a large gain
+    for (int i = 0; i < 30; ++i) conv->forward(torch::randn({1, 3, 8, 8}));  // power iterations
+    const auto matrix = (conv->weight / 1.0).view({8, -1});
+    const double sigmaMax = std::get<1>(torch::linalg::svd(matrix, false, c10::nullopt))[0].item<double>();
+    const auto v = torch::randn({matrix.size(1)});
+    conv->eval();
+    // The normalised weight's largest singular value is 1.
+    const auto normalised = matrix / sigmaMax;
+    EXPECT_NEAR(std::get<1>(torch::linalg::svd(normalised, false, c10::nullopt))[0].item<double>(), 1.0, 1e-4);
+    // And the layer's own estimate matches it.
+    const auto u = conv->u;
+    const auto vv = torch::nn::functional::normalize(torch::mv(matrix.t(), u), torch::nn::functional::NormalizeFuncOptions().dim(0));
+    EXPECT_NEAR(torch::dot(u, torch::mv(matrix, vv)).item<double>(), sigmaMax, 1e-3 * sigmaMax);
+    (void)v;
+}
+
+TEST(Losses, HingeLossesHaveTheirKnownValues) {
+    EXPECT_NEAR(discriminatorHingeLoss(torch::full({4}, 2.0), torch::full({4}, -2.0)).item<double>(), 0.0, 1e-9);
+    EXPECT_NEAR(discriminatorHingeLoss(torch::zeros({4}), torch::zeros({4})).item<double>(), 2.0, 1e-9);
+    EXPECT_NEAR(generatorHingeLoss(torch::full({4}, 0.5)).item<double>(), -0.5, 1e-9);
+}
+
+TEST(Losses, NonFiniteGradientsAreZeroed) {
+    auto p = torch::ones({3}, torch::requires_grad());
+    p.mutable_grad() = torch::tensor({1.0f, std::nanf(""), INFINITY});
+    EXPECT_EQ(zeroNonFiniteGradients({p}), 2);
+    EXPECT_TRUE(torch::equal(p.grad(), torch::tensor({1.0f, 0.0f, 0.0f})));
+}
+
+}  // namespace
+}  // namespace lh::net

@@ -1,0 +1,126 @@
+// `predict` end to end through the torch-free Predictor, and the prediction path's hard
+// cases: black, saturated and identical images, tiny baselines, and inputs that must be
+// refused with a clear error (zero baseline, NaN pixels, sizes that disagree with the cameras).
+#include "core/errors.h"
+#include "net/lighthouse_net.h"
+#include "net/predictor.h"
+#include "render/envmap.h"
+#include "render/render_volume.h"
+#include "tests/net/net_test_scenes.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace lh::net {
+namespace {
+
+using test::planeCamera;
+using test::renderPlane;
+
+class PredictionTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        torch::manual_seed(5);
+        LighthouseNet net(test::tinyConfig());
+        modelPath() = (std::filesystem::temp_directory_path() / "lighthouse_prediction_test.pt").string();
+        saveModel(net, modelPath());
+    }
+    static void TearDownTestSuite() { std::filesystem::remove(modelPath()); }
+    static std::string& modelPath() {
+        static std::string path;
+        return path;
+    }
+
+    static StereoPair planePair(double baseline) {
+        StereoPair pair;
+        pair.cameras.ref = planeCamera(64, 32);
+        pair.cameras.src = planeCamera(64, 32, Vec3d(baseline, 0.0, 0.0));
+        pair.ref = renderPlane(pair.cameras.ref, 2.0);
+        pair.src = renderPlane(*pair.cameras.src, 2.0);
+        return pair;
+    }
+
+    // Every stored value finite, and envmaps rendered from the volume finite too.
+    static void expectFinitePrediction(const Prediction& p) {
+        EXPECT_TRUE(std::isfinite(p.range.near) && std::isfinite(p.range.far) && p.range.far > p.range.near);
+        for (const auto& level : p.volume.levels) {
+            for (auto it = level.density->cbeginValueOn(); it; ++it) EXPECT_TRUE(std::isfinite(*it) && *it >= 0);
+            for (auto it = level.color->cbeginValueOn(); it; ++it)
+                EXPECT_TRUE(std::isfinite((*it)[0]) && std::isfinite((*it)[1]) && std::isfinite((*it)[2]));
+        }
+        EnvmapOptions options;
+        options.width = 32;
+        options.height = 16;
+        const ImageRGB env = renderEnvmap(RenderVolume(p.volume), Vec3d(0, 0, 1), options);
+        for (float v : env.pixels) EXPECT_TRUE(std::isfinite(v));
+    }
+
+    Predictor predictor{PredictorOptions{modelPath(), "cpu", 2}};
+};
+
+TEST_F(PredictionTest, PredictsAVolumeInTheLayoutOfTheDepthRange) {
+    StereoPair pair = planePair(0.2);
+    pair.cameras.near = 1.0;
+    pair.cameras.far = 4.0;
+    const Prediction p = predictor.predict(pair);
+    EXPECT_FALSE(p.rangeEstimated);
+    ASSERT_TRUE(p.volume.layout.has_value());
+    EXPECT_EQ(p.volume.layout->levels, 2);
+    EXPECT_EQ(p.volume.layout->resolution, 16);
+    EXPECT_DOUBLE_EQ(p.volume.layout->s0, 8.0);  // 2 min(far, 20)
+    EXPECT_EQ(p.mpi.planeCount(), 16);
+    EXPECT_NEAR(p.mpi.planeDepths.front(), 4.0, 1e-9);
+    EXPECT_NEAR(p.mpi.planeDepths.back(), 1.0, 1e-9);
+    expectFinitePrediction(p);
+}
+
+TEST_F(PredictionTest, EstimatesTheDepthRangeWhenCamerasGiveNone) {
+    const Prediction p = predictor.predict(planePair(0.2));
+    EXPECT_TRUE(p.rangeEstimated);
+    EXPECT_FALSE(p.range.fallback);
+    EXPECT_LT(p.range.near, 2.0);
+    EXPECT_GT(p.range.far, 2.0);
+    expectFinitePrediction(p);
+}
+
+TEST_F(PredictionTest, BlackAndSaturatedImagesGiveFiniteVolumes) {
+    for (float value : {0.f, 1.f}) {
+        StereoPair pair = planePair(0.2);
+        std::fill(pair.ref.pixels.begin(), pair.ref.pixels.end(), value);
+        std::fill(pair.src.pixels.begin(), pair.src.pixels.end(), value);
+        const Prediction p = predictor.predict(pair);
+        EXPECT_TRUE(p.range.fallback) << "a textureless pair cannot vote for a depth";
+        EXPECT_DOUBLE_EQ(p.range.near, kFallbackNear);
+        expectFinitePrediction(p);
+    }
+}
+
+TEST_F(PredictionTest, IdenticalImagesAndTinyBaselinesGiveFiniteVolumes) {
+    StereoPair same = planePair(0.2);
+    same.src = same.ref;  // zero disparity everywhere: the scene looks infinitely far
+    expectFinitePrediction(predictor.predict(same));
+    expectFinitePrediction(predictor.predict(planePair(1e-7)));
+}
+
+TEST_F(PredictionTest, ImpossibleInputsAreRefusedWithAClearError) {
+    StereoPair zero = planePair(0.0);
+    EXPECT_THROW(predictor.predict(zero), InputError);
+    StereoPair nan = planePair(0.2);
+    nan.ref.pixels[10] = std::nanf("");
+    EXPECT_THROW(predictor.predict(nan), InputError);
+    StereoPair wrongSize = planePair(0.2);
+    wrongSize.cameras.ref.width = 128;
+    EXPECT_THROW(predictor.predict(wrongSize), InputError);
+    StereoPair noSrc = planePair(0.2);
+    noSrc.cameras.src.reset();
+    EXPECT_THROW(predictor.predict(noSrc), InputError);
+}
+
+TEST(PredictorOptionsTest, UnknownDeviceOrMissingModelIsAClearError) {
+    EXPECT_THROW(Predictor(PredictorOptions{"/nonexistent/model.pt", "cpu", 1}), FileError);
+    EXPECT_THROW(Predictor(PredictorOptions{"", "tpu", 1}), InputError);
+}
+
+}  // namespace
+}  // namespace lh::net
