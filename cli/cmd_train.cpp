@@ -26,6 +26,8 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
     cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (untested here)")
         ->capture_default_str();
+    cmd->add_option("--vgg", o->vggWeights,
+                    "VGG-19 weights for the paper's perceptual loss (TorchScript; see net/vgg_loss.h); default: L1 + gradients");
     cmd->add_flag("!--no-resume", o->resume, "Start afresh even if OUT.checkpoint exists");
     cmd->callback([o, &threads] {
         o->threads = threads;

@@ -10,6 +10,7 @@
 #include "net/mpi_render.h"
 #include "net/tensor_image.h"
 #include "net/training_data.h"
+#include "net/vgg_loss.h"
 #include "net/volume_render.h"
 #include "render/contact_sheet.h"
 #include "render/metrics.h"
@@ -227,6 +228,13 @@ void train(const TrainOptions& o, std::ostream& progress) {
              << validationScenes.size() << " validated), " << torch::get_num_threads() << " threads on "
              << device.str() << "\n";
 
+    std::unique_ptr<VggPerceptualLoss> vgg;
+    if (!o.vggWeights.empty()) vgg = std::make_unique<VggPerceptualLoss>(o.vggWeights, device);
+    progress << "train: image loss: " << (vgg ? "VGG-19 perceptual (" + o.vggWeights + ")" : std::string("L1 + gradients (substitute for VGG-19)")) << "\n";
+    const auto lossOf = [&](const torch::Tensor& predicted, const torch::Tensor& target) {
+        return vgg ? (*vgg)(predicted, target) : imageLoss(predicted, target);
+    };
+
     s.net->train();
     LogRow window;
     int windowCount = 0;
@@ -246,7 +254,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
         const PipelineOutput out = s.net->run(in, stage >= 2);
         const PinholeCamera tgt = resizedCamera(*ex.cameras.tgt, config.width, config.height);
         const auto tgtImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
-        const auto viewLoss = imageLoss(renderMpiView(out.mpi, in.depths, in.ref, tgt), tgtImage);
+        const auto viewLoss = lossOf(renderMpiView(out.mpi, in.depths, in.ref, tgt), tgtImage);
         auto loss = viewLoss;
         torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}), discLoss = torch::zeros({});
         if (stage >= 2) {
@@ -254,7 +262,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
             const auto gt = imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight)).to(device);
             const auto env = renderEnvmapTorch(out.cubes, in.layout, ex.cameras.envmaps[e].position, config.trainEnvWidth,
                                                config.trainEnvHeight, config.samplesPerLevel);
-            envLoss = imageLoss(env, gt);
+            envLoss = lossOf(env, gt);
             loss = loss + envLoss;
             if (stage >= 3) {
                 // Discriminator step on real vs (detached) predicted envmaps, then the generator term.
@@ -310,7 +318,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
             window = LogRow{};
             windowCount = 0;
             windowStart = std::chrono::steady_clock::now();
-            if (validateNow) writeLog(o, s.log);
+            writeLog(o, s.log);  // every progress line, so a resumed run keeps whole curves
         }
         if (done % o.checkpointEvery == 0 || done == o.iterations) {
             s.iteration = done;

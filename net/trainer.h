@@ -3,7 +3,8 @@
 //   stage 2 (to 90%): the envmap loss added, training the completion networks and,
 //            through the non-gradient-stopped blend, the MPI network;
 //   stage 3 (last 10%): the PatchGAN adversarial loss added (weight 0.1).
-// Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1; non-finite
+// Image losses: the paper's VGG-19 perceptual loss with --vgg FILE, else the substitute of
+// losses.h. Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1; non-finite
 // gradients zeroed; gradients clipped to a global norm of 5.
 #pragma once
 
@@ -27,6 +28,8 @@ struct TrainOptions {
     std::string device = "cpu";
     int threads = 0;
     bool resume = true;        // continue from OUT.checkpoint when it exists
+    std::string vggWeights;    // VGG-19 weights (net/vgg_loss.h): the paper's perceptual loss
+                               // instead of the substitute
 
     void validate() const;     // throws InputError
 };

@@ -175,3 +175,55 @@ TEST(Losses, NonFiniteGradientsAreZeroed) {
 
 }  // namespace
 }  // namespace lh::net
+
+// --vgg: a TorchScript archive of VGG-19 features weights (random here: the real ones cannot
+// be downloaded on this machine) loads, gives zero for identical images and more for
+// different ones, and a file that is not one is refused.
+#include "net/vgg_loss.h"
+
+#include <torch/script.h>
+
+namespace lh::net {
+namespace {
+
+std::string writeVggArchive(const std::string& name, bool complete) {
+    torch::jit::Module archive("VggWeights");
+    const int widths[16] = {64, 64, 128, 128, 256, 256, 256, 256, 512, 512, 512, 512, 512, 512, 512, 512};
+    int in = 3;
+    for (int c = 0; c < (complete ? 16 : 10); ++c) {
+        const std::string stem = std::to_string(VggPerceptualLoss::kConvIndices[c]);
+        archive.register_buffer(stem + "_weight", torch::randn({widths[c], in, 3, 3}) * std::sqrt(2.0 / (in * 9)));
+        archive.register_buffer(stem + "_bias", torch::zeros({widths[c]}));
+        in = widths[c];
+    }
+    const std::string path = (std::filesystem::temp_directory_path() / name).string();
+    archive.save(path);
+    return path;
+}
+
+TEST(VggLoss, LoadsTorchScriptWeightsAndMeasuresDifferences) {
+    torch::manual_seed(6);
+    const std::string path = writeVggArchive("lighthouse_vgg_test.pt", true);
+    const VggPerceptualLoss loss(path, torch::Device(torch::kCPU));
+    const auto a = torch::rand({1, 3, 32, 64}), b = torch::rand({1, 3, 32, 64});
+    EXPECT_NEAR(loss(a, a).item<double>(), 0.0, 1e-7);
+    EXPECT_GT(loss(a, b).item<double>(), 0.01);
+    auto p = a.clone().requires_grad_(true);
+    loss(p, b).backward();
+    EXPECT_GT(p.grad().abs().sum().item<double>(), 0.0);
+    std::filesystem::remove(path);
+}
+
+TEST(VggLoss, IncompleteOrForeignFilesAreRefused) {
+    const std::string partial = writeVggArchive("lighthouse_vgg_partial.pt", false);
+    EXPECT_THROW(VggPerceptualLoss(partial, torch::Device(torch::kCPU)), FileError);
+    std::filesystem::remove(partial);
+    const std::string text = (std::filesystem::temp_directory_path() / "lighthouse_vgg_text.pt").string();
+    { std::ofstream(text) << "not an archive"; }
+    EXPECT_THROW(VggPerceptualLoss(text, torch::Device(torch::kCPU)), FileError);
+    EXPECT_THROW(VggPerceptualLoss(text + ".missing", torch::Device(torch::kCPU)), FileError);
+    std::filesystem::remove(text);
+}
+
+}  // namespace
+}  // namespace lh::net
