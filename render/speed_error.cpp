@@ -34,6 +34,31 @@ std::vector<Vec3d> freeSpacePoints(const RenderVolume& volume, int count, uint64
     return points;
 }
 
+namespace {
+
+struct ErrorStats {
+    double psnr = 100, relativeRmse = 0;
+};
+
+ErrorStats compareSets(const std::vector<ImageRGB>& images, const std::vector<ImageRGB>& reference) {
+    double squared = 0, mean = 0, psnrSum = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        for (std::size_t k = 0; k < images[i].pixels.size(); ++k) {
+            squared += std::pow(double(images[i].pixels[k]) - reference[i].pixels[k], 2);
+            mean += reference[i].pixels[k];
+            ++n;
+        }
+        psnrSum += std::min(psnr(images[i], reference[i]), 100.0);
+    }
+    ErrorStats e;
+    e.psnr = psnrSum / images.size();
+    e.relativeRmse = mean > 0 ? std::sqrt(squared / n) / (mean / n) : 0.0;
+    return e;
+}
+
+}  // namespace
+
 std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume, const SpeedErrorOptions& o,
                                                     const std::function<void(const std::string&)>& progress) {
     const RenderVolume prepared(volume);
@@ -51,17 +76,8 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
         const auto start = std::chrono::steady_clock::now();
         for (const Vec3d& p : points) images.push_back(render(p));
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        double squared = 0, mean = 0, psnrSum = 0;
-        std::size_t n = 0;
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            for (std::size_t k = 0; k < images[i].pixels.size(); ++k) {
-                squared += std::pow(double(images[i].pixels[k]) - reference[i].pixels[k], 2);
-                mean += reference[i].pixels[k];
-                ++n;
-            }
-            psnrSum += std::min(psnr(images[i], reference[i]), 100.0);  // identical -> capped
-        }
-        rows.push_back({method, setting, ms / points.size(), std::sqrt(squared / n) / (mean / n), psnrSum / points.size()});
+        const ErrorStats e = compareSets(images, reference);  // PSNR of identical images capped at 100
+        rows.push_back({method, setting, ms / points.size(), e.relativeRmse, e.psnr});
     };
     // How converged the reference is: the same at half the step and optical depth per step.
     measure("reference-check", "step 0.025, tau<0.01", [&](const Vec3d& p) {
@@ -153,27 +169,6 @@ void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::st
 // ---- Memory against error ----
 
 namespace {
-
-struct ErrorStats {
-    double psnr = 100, relativeRmse = 0;
-};
-
-ErrorStats compareSets(const std::vector<ImageRGB>& images, const std::vector<ImageRGB>& reference) {
-    double squared = 0, mean = 0, psnrSum = 0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < images.size(); ++i) {
-        for (std::size_t k = 0; k < images[i].pixels.size(); ++k) {
-            squared += std::pow(double(images[i].pixels[k]) - reference[i].pixels[k], 2);
-            mean += reference[i].pixels[k];
-            ++n;
-        }
-        psnrSum += std::min(psnr(images[i], reference[i]), 100.0);
-    }
-    ErrorStats e;
-    e.psnr = psnrSum / images.size();
-    e.relativeRmse = mean > 0 ? std::sqrt(squared / n) / (mean / n) : 0.0;
-    return e;
-}
 
 std::vector<ImageRGB> renderAll(const RenderVolume& volume, const std::vector<Vec3d>& points, int w, int h,
                                 double* msPerEnvmap = nullptr, const MarchOptions& march = {}) {
