@@ -72,7 +72,9 @@ lighthouse_cli_ok(edit_add_box_and_scale
 lighthouse_cli_ok(edit_then_render
   EXR edited_env.exr
   ARGS render-envmap edited.vdb --at 0,0,0.5 --size 32x16 -o edited_env.exr)
-set_tests_properties(cli.ok.edit_then_render PROPERTIES DEPENDS cli.ok.edit_add_box_and_scale)
+# A fixture, not just an order: running edit_then_render alone (ctest -R) runs the edit first.
+set_tests_properties(cli.ok.edit_add_box_and_scale PROPERTIES FIXTURES_SETUP lighthouse_edited)
+set_tests_properties(cli.ok.edit_then_render PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_edited")
 lighthouse_cli_error(edit_nothing
   EXPECT "no edit given"
   ABSENT edited_none.vdb
