@@ -53,9 +53,12 @@ void runSparsify(const SparsifyOptions& o) {
     SparsityStats stats;
     const LightingVolume pruned = sparsify(volume, options, &stats);
     saveSparseVolume(o.output, pruned, !o.floatPrecision);
-    std::printf("tau %.3g: %llu -> %llu active voxels, %.2f -> %.2f MB in memory, %d level(s) dropped, "
+    std::printf("tau %.3g (rays up to %.3g scene units, brightest colour %.3g: voxels of density <= %.3g per unit "
+                "dropped): %llu -> %llu active voxels, %.2f -> %.2f MB in memory, %d level(s) dropped, "
                 "%s on disk (%s, Blosc)\n",
-                options.tau, static_cast<unsigned long long>(stats.activeBefore),
+                options.tau, stats.rayLength, stats.maxColour,
+                stats.maxColour > 0 ? stats.fieldBound / stats.maxColour : 0.0,
+                static_cast<unsigned long long>(stats.activeBefore),
                 static_cast<unsigned long long>(stats.activeAfter), stats.memoryBefore / 1e6, stats.memoryAfter / 1e6,
                 stats.levelsDropped, o.output.c_str(), o.floatPrecision ? "float" : "half");
 }
@@ -69,9 +72,9 @@ void addSparsifyCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output .vdb")->required();
     cmd->add_option("--target-db", o->targetDb, "PSNR loss allowed against ground truth (dB)")->capture_default_str();
     cmd->add_option("--base-psnr", o->basePsnr, "PSNR the volume reaches against ground truth (dB)")->capture_default_str();
-    cmd->add_option("--tau", o->tau, "Explicit per-voxel bound in display radiance (skips the search)");
+    cmd->add_option("--tau", o->tau, "Explicit bound: largest change of any envmap pixel, linear radiance with white = 1 (skips the search)");
     cmd->add_option("--levels-from-depth", o->depthRange, "NEAR,FAR: keep the levels this depth range needs");
-    cmd->add_option("--points", o->points, "Random free-space points for the search")->capture_default_str();
+    cmd->add_option("--points", o->points, "Random free-space points for the search (least dense points in fog)")->capture_default_str();
     cmd->add_flag("--float", o->floatPrecision, "Store 32-bit floats instead of halves");
     cmd->callback([o] { runSparsify(*o); });
 }

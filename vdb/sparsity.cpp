@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lh {
 
@@ -35,6 +36,46 @@ openvdb::Index64 activeDensityVoxels(const LightingVolume& volume) {
     return n;
 }
 
+double SparsityBound::thinDensity() const {
+    return maxColour > 0 ? fieldBound / maxColour : std::numeric_limits<double>::infinity();
+}
+
+SparsityBound sparsityBound(const LightingVolume& volume, double tau) {
+    SparsityBound b;
+    openvdb::BBoxd box;  // world bounding box of every level's domain (voxel faces)
+    for (const auto& level : volume.levels) {
+        const openvdb::BBoxd index(level.domain.min().asVec3d() - Vec3d(0.5), level.domain.max().asVec3d() + Vec3d(0.5));
+        box.expand(level.transform().indexToWorld(index));
+        auto d = level.density->getConstAccessor();
+        for (auto it = level.color->cbeginValueOn(); it; ++it) {
+            // Tiles of colour over density tiles: test the tile's first voxel's density.
+            if (!(d.getValue(it.getCoord()) > 0.f)) continue;
+            b.maxColour = std::max({b.maxColour, double(it->x()), double(it->y()), double(it->z())});
+        }
+    }
+    b.rayLength = box.extents().length();
+    b.fieldBound = b.rayLength > 0 ? tau / (3.0 * b.rayLength) : 0.0;
+    return b;
+}
+
+MemoryBreakdown memoryBreakdown(const LightingVolume& volume) {
+    MemoryBreakdown m;
+    for (const auto& level : volume.levels) {
+        const auto& dt = level.density->tree();
+        const auto& ct = level.color->tree();
+        openvdb::Index64 dl = 0, cl = 0;
+        for (auto it = dt.cbeginLeaf(); it; ++it) dl += it->memUsage();
+        for (auto it = ct.cbeginLeaf(); it; ++it) cl += it->memUsage();
+        m.densityLeaves += dl;
+        m.colourLeaves += cl;
+        m.densityUpper += level.density->memUsage() - dl;  // root, upper nodes, transform, metadata
+        m.colourUpper += level.color->memUsage() - cl;
+        m.leafCount += dt.leafCount();
+        m.activeVoxels += level.density->activeVoxelCount();
+    }
+    return m;
+}
+
 namespace {
 
 VolumeLevel deepCopy(const VolumeLevel& level) {
@@ -45,26 +86,12 @@ VolumeLevel deepCopy(const VolumeLevel& level) {
     return out;
 }
 
-double voxelEdge(const VolumeLevel& level) { return std::cbrt(level.voxelVolume()); }
-
-// Deactivates voxels (and tiles) that can change a ray by less than tau: opacity sigma*h and
-// emitted radiance sigma*max(colour)*h both below tau. Returns the voxels dropped.
-openvdb::Index64 dropThinVoxels(VolumeLevel& level, double tau) {
-    const double h = voxelEdge(level);
-    // Tiles span many colour values: test them against the brightest colour of the level.
-    float maxColour = 0.f;
-    for (auto it = level.color->cbeginValueOn(); it; ++it)
-        maxColour = std::max({maxColour, it->x(), it->y(), it->z()});
-    auto colorAcc = level.color->getConstAccessor();
+// Deactivates voxels (and tiles) of density at most `maxSigma` (SparsityBound::thinDensity):
+// together they change any ray by at most a third of tau. Returns the voxels dropped.
+openvdb::Index64 dropThinVoxels(VolumeLevel& level, double maxSigma) {
     openvdb::Index64 dropped = 0;
     for (auto it = level.density->beginValueOn(); it; ++it) {
-        const double sigma = std::max(0.f, *it);
-        float colour = maxColour;
-        if (it.isVoxelValue()) {
-            const openvdb::Vec3s c = colorAcc.getValue(it.getCoord());
-            colour = std::max({c.x(), c.y(), c.z(), 0.f});
-        }
-        if (sigma * h < tau && sigma * colour * h < tau) {
+        if (*it <= maxSigma) {
             dropped += it.getVoxelCount();
             it.setValue(0.f);
             it.setValueOff();
@@ -117,9 +144,9 @@ private:
 
 // Bounding box of the voxels of `fine` that the coarser fields do not reproduce within tau
 // (empty if they reproduce all of it).
+// `eps` is SparsityBound::fieldBound, `colour` its brightest colour C.
 openvdb::CoordBBox unreproducedBox(const VolumeLevel& fine, const std::vector<LevelField>& coarser,
-                                   double tau) {
-    const double h = voxelEdge(fine);
+                                   double eps, double colour) {
     const openvdb::CoordBBox domain = fine.domain;
     using Range = tbb::blocked_range<int>;
     return tbb::parallel_reduce(
@@ -140,8 +167,9 @@ openvdb::CoordBBox unreproducedBox(const VolumeLevel& fine, const std::vector<Le
                         bool inside = false;
                         for (auto it = coarser.rbegin(); it != coarser.rend() && !inside; ++it)
                             inside = it->sample(world, sc, ec);
-                        bool same = inside && std::abs(sigma - sc) * h <= tau;
-                        for (int i = 0; i < 3 && same; ++i) same = std::abs(emission[i] - ec[i]) * h <= tau;
+                        double de = 0;
+                        for (int i = 0; i < 3; ++i) de = std::max(de, double(std::abs(emission[i] - ec[i])));
+                        const bool same = inside && de + colour * std::abs(double(sigma) - sc) <= eps;
                         if (!same) box.expand(ijk);
                     }
             return box;
@@ -152,13 +180,21 @@ openvdb::CoordBBox unreproducedBox(const VolumeLevel& fine, const std::vector<Le
         });
 }
 
-void pruneLevel(VolumeLevel& level, double tau, bool tiles) {
+// Tile tolerances from the field bound: prune moves a value by at most twice its tolerance;
+// a density change d moves emission by up to C d as well, a colour change c by sigma_max c.
+// With tolS = eps / (6 C) and tolC = eps / (6 sigma_max):
+//   |d_e| + C |d_sigma| <= (2 C tolS + 2 sigma_max tolC) + 2 C tolS = eps.
+void pruneLevel(VolumeLevel& level, double eps, double colour, bool tiles) {
     // Colour matters only where there is density.
     level.color->tree().topologyIntersection(level.density->tree());
-    if (tiles) {
-        const double h = voxelEdge(level);
-        openvdb::tools::prune(level.density->tree(), float(tau / h));
-        openvdb::tools::prune(level.color->tree(), openvdb::Vec3s(float(tau)));
+    if (tiles && eps > 0) {
+        float sigmaMax = 0.f;
+        for (auto it = level.density->cbeginValueOn(); it; ++it) sigmaMax = std::max(sigmaMax, *it);
+        const double big = std::numeric_limits<float>::max();
+        const float tolS = float(colour > 0 ? std::min(big, eps / (6 * colour)) : big);
+        const float tolC = float(sigmaMax > 0 ? std::min(big, eps / (6 * double(sigmaMax))) : big);
+        openvdb::tools::prune(level.density->tree(), tolS);
+        openvdb::tools::prune(level.color->tree(), openvdb::Vec3s(tolC));
     }
     openvdb::tools::pruneInactive(level.density->tree());
     openvdb::tools::pruneInactive(level.color->tree());
@@ -182,8 +218,14 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
     s.levelsDropped += int(volume.levels.size() - keep);
     for (std::size_t k = 0; k < keep; ++k) out.levels.push_back(deepCopy(volume.levels[k]));
 
+    // The bound is derived from the input (all its levels): dropping levels never lengthens a
+    // ray or brightens a colour.
+    const SparsityBound bound = sparsityBound(volume, options.tau);
+    s.rayLength = bound.rayLength;
+    s.maxColour = bound.maxColour;
+    s.fieldBound = bound.fieldBound;
     if (options.dropThinVoxels)
-        for (auto& level : out.levels) s.thinVoxelsDropped += dropThinVoxels(level, options.tau);
+        for (auto& level : out.levels) s.thinVoxelsDropped += dropThinVoxels(level, bound.thinDensity());
 
     if (options.dropReproducedFine && out.levels.size() > 1) {
         std::vector<VolumeLevel> kept{out.levels[0]};
@@ -191,7 +233,7 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
         fields.emplace_back(kept[0]);
         for (std::size_t k = 1; k < out.levels.size(); ++k) {
             VolumeLevel& level = out.levels[k];
-            openvdb::CoordBBox box = unreproducedBox(level, fields, options.tau);
+            openvdb::CoordBBox box = unreproducedBox(level, fields, bound.fieldBound, bound.maxColour);
             const openvdb::Index64 before = level.density->activeVoxelCount();
             if (box.empty()) {
                 s.reproducedVoxelsDropped += before;
@@ -223,7 +265,7 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
         else
             out.layout.reset();
     }
-    for (auto& level : out.levels) pruneLevel(level, options.tau, options.pruneTiles);
+    for (auto& level : out.levels) pruneLevel(level, bound.fieldBound, bound.maxColour, options.pruneTiles);
     out.normaliseLevels();
     s.activeAfter = activeDensityVoxels(out);
     s.memoryAfter = out.memoryBytes();

@@ -36,3 +36,16 @@ lighthouse_cli_ok(sparsify_example
   STDOUT "active voxels" "half"
   FILES sparse_example.vdb
   ARGS sparsify example.vdb -o sparse_example.vdb --tau 1e-3)
+# Dense fog (every voxel has a little density, as predicted volumes do): bench-sparsity used
+# to refuse it ("no empty space to put query points in"); it must now take the least dense
+# points and write the full report. The fog is the fixture volume painted over with sigma 0.05.
+lighthouse_cli_ok(sparsity_make_fog
+  FILES fog.vdb
+  ARGS edit example.vdb --add-box -100,-100,-100,100,100,100:0.4,0.3,0.2:0.05 -o fog.vdb)
+lighthouse_cli_ok(bench_sparsity_fog
+  STDOUT "unpruned" "tau 0[.]1" "where the bytes in memory go" "brightest colour 0[.]4"
+  FILES bench_sparsity_fog/memory_error.csv bench_sparsity_fog/memory_error.svg
+        bench_sparsity_fog/memory_breakdown.md
+  ARGS bench-sparsity fog.vdb --points 1 --size 16x8 --taus 1e-3,0.1 --out bench_sparsity_fog)
+set_tests_properties(cli.ok.sparsity_make_fog PROPERTIES FIXTURES_SETUP lighthouse_fog)
+set_tests_properties(cli.ok.bench_sparsity_fog PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_fog")
