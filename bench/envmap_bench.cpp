@@ -1,9 +1,15 @@
 // Envmap rendering speed on the bundled example room (5 x 64^3), 240x120, at several
 // points and step settings. Run: build/bench/lighthouse_bench [--benchmark_filter=...]
+// With LIGHTHOUSE_BENCH_VOLUME=FILE.vdb set, BM_EnvmapFile also times that volume at the
+// random free-space points `lighthouse bench-envmap` uses (seed 1), per quadrature setting.
 #include "render/envmap.h"
+#include "render/speed_error.h"
 #include "vdb/example_volume.h"
+#include "vdb/volume_io.h"
 
 #include <benchmark/benchmark.h>
+
+#include <cstdlib>
 
 namespace {
 
@@ -26,6 +32,28 @@ void BM_EnvmapExampleRoom(benchmark::State& state) {
     state.counters["envmaps/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_EnvmapExampleRoom)->Arg(25)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Arg: Gauss nodes per lattice cell (0: fixed 0.5-voxel steps).
+void BM_EnvmapFile(benchmark::State& state) {
+    const char* path = std::getenv("LIGHTHOUSE_BENCH_VOLUME");
+    if (!path) {
+        state.SkipWithError("set LIGHTHOUSE_BENCH_VOLUME=FILE.vdb to time a volume file");
+        return;
+    }
+    static const lh::RenderVolume volume(lh::loadVolume(path));
+    static const std::vector<lh::Vec3d> points = lh::freeSpacePoints(volume, 8, 1);
+    lh::EnvmapOptions options;
+    options.march.cellNodes = int(state.range(0));
+    std::size_t i = 0;
+    for (auto _ : state) {
+        lh::ImageRGB env = lh::renderEnvmap(volume, points[i++ % points.size()], options);
+        benchmark::DoNotOptimize(env.pixels.data());
+    }
+    state.SetLabel(options.march.cellNodes ? std::to_string(options.march.cellNodes) + " Gauss nodes/cell"
+                                           : "step 0.5 voxels");
+    state.counters["envmaps/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EnvmapFile)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_EnvmapReference(benchmark::State& state) {
     lh::EnvmapOptions options;

@@ -90,22 +90,24 @@ void BM_PartitionRay(benchmark::State& state) {
 }
 BENCHMARK(BM_PartitionRay);
 
-// Segment integration: whole rays from a point in the room at the default step, with and
-// without empty-space skipping; items = rays.
+// Segment integration: whole rays from a point in the room, with the default cell quadrature
+// (first argument 0) or fixed steps of (first argument / 100) voxels, with and without
+// empty-space skipping; items = rays.
 void BM_MarchRay(benchmark::State& state) {
     const lh::RenderVolume& volume = exampleRoom();
     const auto dirs = unitDirections(4096);
     lh::MarchOptions o;
-    o.stepVoxels = double(state.range(0)) / 100.0;
+    if (state.range(0) > 0) o.cellNodes = 0, o.stepVoxels = double(state.range(0)) / 100.0;
     o.skipEmptySpace = state.range(1) != 0;
     std::size_t i = 0;
     for (auto _ : state) {
         benchmark::DoNotOptimize(lh::marchRay(volume, lh::Vec3d(0.1, 0.2, 2.0), dirs[i++ & 4095], o));
     }
     state.SetItemsProcessed(state.iterations());
-    state.SetLabel("step " + std::to_string(o.stepVoxels) + (o.skipEmptySpace ? ", skipping" : ", no skipping"));
+    state.SetLabel((o.cellNodes ? std::to_string(o.cellNodes) + " Gauss nodes/cell" : "step " + std::to_string(o.stepVoxels)) +
+                   (o.skipEmptySpace ? ", skipping" : ", no skipping"));
 }
-BENCHMARK(BM_MarchRay)->Args({50, 1})->Args({100, 1})->Args({50, 0});
+BENCHMARK(BM_MarchRay)->Args({0, 1})->Args({50, 1})->Args({100, 1})->Args({50, 0});
 
 // Segment integration through a homogeneous thick medium: the sub-stepping path.
 void BM_MarchRayThickMedium(benchmark::State& state) {

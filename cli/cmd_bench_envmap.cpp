@@ -38,6 +38,11 @@ void addBenchEnvmapCommand(CLI::App& app) {
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
     cmd->add_option("--points", o->bench.points, "Random query points in empty space")->capture_default_str();
     cmd->add_option("--size", o->size, "Envmap size WxH")->capture_default_str();
+    cmd->add_option("--methods", o->bench.methods,
+                    "Only these methods (reference-check, ours-steps, ours-cells, openvdb-fixed-step, "
+                    "paper-spheres); default: all")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step", "paper-spheres"}));
     cmd->add_option("--seed", o->bench.seed, "Seed of the query points")->capture_default_str();
     cmd->add_option("--out", o->out, "Directory for speed_error.csv/.md/.svg")->capture_default_str();
     cmd->callback([o] { runBench(*o); });

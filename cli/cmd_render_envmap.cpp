@@ -1,6 +1,7 @@
 // `lighthouse render-envmap FILE.vdb --at X,Y,Z [...] -o OUT.exr|.png`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/quadrature_flags.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "render/envmap.h"
@@ -19,7 +20,7 @@ struct RenderEnvmapOptions {
     std::string pointsFile;
     std::string size = "240x120";
     float exposure = 1.f;
-    double step = MarchOptions{}.stepVoxels;
+    QuadratureFlags quadrature;
     double threshold = MarchOptions{}.minTransmittance;
     bool reference = false;
     bool alsoPng = false;
@@ -35,8 +36,12 @@ void renderEnvmaps(const RenderEnvmapOptions& o) {
         throw InputError("exposure must be a positive number");
     EnvmapOptions options;
     parseSize(o.size, options.width, options.height);
-    options.march = o.reference ? MarchOptions::reference()
-                                : MarchOptions{o.step, o.threshold, true};
+    if (o.reference) {
+        options.march = MarchOptions::reference();
+    } else {
+        o.quadrature.applyTo(options.march);
+        options.march.minTransmittance = o.threshold;
+    }
     options.validate();
 
     std::vector<Vec3d> points;
@@ -72,12 +77,11 @@ void addRenderEnvmapCommand(CLI::App& app) {
     cmd->add_option("--points", o->pointsFile, "Text file, one point 'x y z' per line");
     cmd->add_option("--size", o->size, "Envmap size WxH with W = 2H")->capture_default_str();
     cmd->add_option("--exposure", o->exposure, "PNG exposure multiplier")->capture_default_str();
-    cmd->add_option("--step", o->step, "March step, in voxels of the current level")
-        ->capture_default_str();
+    addQuadratureFlags(cmd, o->quadrature);
     cmd->add_option("--threshold", o->threshold, "Stop a ray once transmittance drops below")
         ->capture_default_str();
     cmd->add_flag("--reference", o->reference,
-                  "Reference mode: 0.05-voxel steps, no empty-space skipping, no early stop");
+                  "Reference mode: 0.05-voxel fixed steps, no empty-space skipping, no early stop");
     cmd->add_flag("--png", o->alsoPng, "With an .exr output, also write an sRGB PNG beside it");
     cmd->add_flag("--strict", o->strict, "Refuse NaN/Inf/negative values instead of sanitising");
     cmd->add_option("-o,--output", o->output,

@@ -1,6 +1,7 @@
 // `lighthouse render-view FILE.vdb --cameras cameras.json --view ref -o OUT.png`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/quadrature_flags.h"
 #include "core/errors.h"
 #include "render/image_io.h"
 #include "render/render_volume.h"
@@ -17,7 +18,7 @@ struct RenderViewOptions {
     std::string cameras;
     std::string view = "ref";
     float exposure = 1.f;
-    double step = MarchOptions{}.stepVoxels;
+    QuadratureFlags quadrature;
     bool strict = false;
     std::string output;
 };
@@ -28,7 +29,7 @@ void renderViewCommand(const RenderViewOptions& o) {
     const CamerasFile cameras = loadCamerasFile(o.cameras);
     const PinholeCamera& camera = cameras.view(o.view);
     MarchOptions march;
-    march.stepVoxels = o.step;
+    o.quadrature.applyTo(march);
     march.validate();
     const RenderVolume prepared(loadVolumeForCli(o.file, o.strict));
     writeImage(renderView(prepared, camera, march), o.output, o.exposure);
@@ -46,8 +47,7 @@ void addRenderViewCommand(CLI::App& app) {
     cmd->add_option("--cameras", o->cameras, "cameras.json (CONVENTIONS.md format)")->required();
     cmd->add_option("--view", o->view, "Which camera: ref, src or tgt")->capture_default_str();
     cmd->add_option("--exposure", o->exposure, "PNG exposure multiplier")->capture_default_str();
-    cmd->add_option("--step", o->step, "March step, in voxels of the current level")
-        ->capture_default_str();
+    addQuadratureFlags(cmd, o->quadrature);
     cmd->add_flag("--strict", o->strict, "Refuse NaN/Inf/negative values instead of sanitising");
     cmd->add_option("-o,--output", o->output, "Output .png (sRGB) or .exr (linear)")->required();
     cmd->callback([o] { renderViewCommand(*o); });

@@ -73,7 +73,7 @@ ImageRGB renderEnvmapConcentricSpheres(const RenderVolume& volume, const Vec3d& 
 
 ImageRGB renderEnvmapOpenVdbFixedStep(const LightingVolume& volume, const Vec3d& position, int width,
                                       int height, double stepVoxels) {
-    EnvmapOptions({width, height, MarchOptions{stepVoxels, 1e-4, false}}).validate();
+    EnvmapOptions({width, height, MarchOptions{stepVoxels, 1e-4, false, 0.5, 0}}).validate();
     // How far rays go: the farthest corner of any level.
     double reach = 0;
     for (const auto& level : volume.levels) {

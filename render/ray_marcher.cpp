@@ -15,11 +15,15 @@ void MarchOptions::validate() const {
     if (!(maxStepOpticalDepth > 0.0))
         throw InputError("maximum optical depth per step must be positive, got " +
                          std::to_string(maxStepOpticalDepth));
+    if (cellNodes < 0 || cellNodes > 3)
+        throw InputError("Gauss nodes per lattice cell must be 0 (fixed steps) or 1-3, got " +
+                         std::to_string(cellNodes));
 }
 
 namespace {
 
 constexpr double kSubdivideMinT = 1e-9;  // transmittance below which thick steps stay whole
+constexpr int kMaxHalvings = 12;         // a cell piece is cut into at most 2^12 parts
 
 // Adds one segment [t, t + dt] of constant medium `s` to the ray. Returns false once the
 // transmittance is below minT.
@@ -77,28 +81,141 @@ bool integrateSpan(const Sampler& sample, double t0, double t1, double stepT,
     return true;
 }
 
+// Gauss-Legendre rules on [0, 1]: a piece of length h is cut into sub-segments of length
+// weight * h, each taking the medium at its node.
+struct GaussRule {
+    int count;
+    double node[3], weight[3];
+};
+constexpr GaussRule kGaussRules[4] = {
+    {0, {}, {}},
+    {1, {0.5}, {1.0}},
+    {2, {0.21132486540518713, 0.78867513459481287}, {0.5, 0.5}},
+    {3, {0.11270166537925831, 0.5, 0.88729833462074169}, {5.0 / 18, 8.0 / 18, 5.0 / 18}},
+};
+
+// The eight corners of one lattice cell (4 channels each), read in place from the brick:
+// trilinear lookups inside one cell share the address arithmetic and the cache lines.
+struct CellCorners {
+    static constexpr int sy = RenderLevel::kLattice * 4, sz = RenderLevel::kLattice * sy;
+    const float* p;  // corner (0, 0, 0); +4 floats is +x, +sy is +y, +sz is +z
+
+    CellCorners(const float* brick, const int cell[3])
+        : p(brick + cell[2] * sz + cell[1] * sy + cell[0] * 4) {}
+    // Cell-local coordinates in [0, 1] (clamped against rounding at the faces).
+    RenderSample at(float fx, float fy, float fz) const {
+        fx = std::clamp(fx, 0.f, 1.f), fy = std::clamp(fy, 0.f, 1.f), fz = std::clamp(fz, 0.f, 1.f);
+        float out[4];
+        for (int c = 0; c < 4; ++c) {
+            const float c00 = p[c] + fx * (p[4 + c] - p[c]);
+            const float c10 = p[sy + c] + fx * (p[sy + 4 + c] - p[sy + c]);
+            const float c01 = p[sz + c] + fx * (p[sz + 4 + c] - p[sz + c]);
+            const float c11 = p[sz + sy + c] + fx * (p[sz + sy + 4 + c] - p[sz + sy + c]);
+            const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
+            out[c] = c0 + fz * (c1 - c0);
+        }
+        return {out[0], {out[1], out[2], out[3]}};
+    }
+};
+
+// Axis of the smallest of three crossing distances, without branches (which the DDA loops
+// mispredict: the next axis is irregular along a ray).
+inline int nearestAxis(const double tNext[3]) {
+    const int a01 = tNext[1] < tNext[0];
+    const double t01 = a01 ? tNext[1] : tNext[0];
+    return tNext[2] < t01 ? 2 : a01;
+}
+
+// Integrates the part [ta, tb] of the ray inside one lattice cell with the Gauss rule of
+// o.cellNodes (ray_marcher.h); `sample(t)` is the trilinear field of the cell. The nodes give
+// the piece's optical depth exactly (sigma is cubic in t). An optically thick piece is
+// halved until its parts have bounded optical depth: where a ray meets a surface, the parts
+// become short exactly where the density is, and stay exact in optical depth.
+template <class Sampler>
+bool integrateCellPiece(const Sampler& sample, double ta, double h, int depth,
+                        const MarchOptions& o, RayResult& r) {
+    const GaussRule& rule = kGaussRules[o.cellNodes];
+    RenderSample atNode[3];
+    double tau = 0.0;  // optical depth of the piece
+    for (int q = 0; q < rule.count; ++q) {
+        atNode[q] = sample(ta + h * rule.node[q]);
+        tau += double(atNode[q].sigma) * rule.weight[q] * h;
+    }
+    // Below kSubdivideMinT what follows cannot matter: do not pay for halving there.
+    if (tau * r.transmittance > o.maxStepOpticalDepth * rule.count && depth < kMaxHalvings &&
+        r.transmittance >= kSubdivideMinT)
+        return integrateCellPiece(sample, ta, 0.5 * h, depth + 1, o, r) &&
+               integrateCellPiece(sample, ta + 0.5 * h, 0.5 * h, depth + 1, o, r);
+    double start = ta;
+    for (int q = 0; q < rule.count; ++q) {
+        const double length = h * rule.weight[q];
+        if (atNode[q].sigma > 0.f && !addSegment(atNode[q], start, length, o.minTransmittance, r))
+            return false;
+        start += length;
+    }
+    return true;
+}
+
+// Walks the lattice cells of one brick crossed by [t0, t1] (a DDA at cell resolution) and
+// integrates the occupied ones. `ub` is the ray origin in the brick's lattice coordinates.
+bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const Vec3d& qd,
+                const Vec3d& inv, double t0, double t1, const MarchOptions& o, RayResult& r) {
+    constexpr int n = RenderLevel::kBrick;
+    int cell[3], step[3];
+    double tNext[3], tDelta[3];
+    for (int a = 0; a < 3; ++a) {
+        cell[a] = std::clamp(int(std::floor(ub[a] + qd[a] * t0)), 0, n - 1);
+        if (qd[a] > 0) {
+            step[a] = 1, tNext[a] = (cell[a] + 1 - ub[a]) * inv[a], tDelta[a] = inv[a];
+        } else if (qd[a] < 0) {
+            step[a] = -1, tNext[a] = (cell[a] - ub[a]) * inv[a], tDelta[a] = -inv[a];
+        } else {
+            step[a] = 0, tNext[a] = tDelta[a] = std::numeric_limits<double>::infinity();
+        }
+    }
+    double t = t0;
+    while (t < t1) {
+        const int axis = nearestAxis(tNext);
+        const double tb = std::min(tNext[axis], t1);
+        if (tb > t && (mask[cell[2]] >> (cell[0] + n * cell[1]) & 1u)) {
+            const CellCorners corners(brick, cell);
+            const Vec3d base = ub - Vec3d(cell[0], cell[1], cell[2]);  // cell-local origin
+            const auto sample = [&](double tt) {
+                return corners.at(float(base[0] + qd[0] * tt), float(base[1] + qd[1] * tt),
+                                  float(base[2] + qd[2] * tt));
+            };
+            if (!integrateCellPiece(sample, t, tb - t, 0, o, r)) return false;
+        }
+        t = std::max(t, tb);
+        cell[axis] += step[axis];
+        tNext[axis] += tDelta[axis];
+        if (cell[axis] < 0 || cell[axis] >= n) break;
+    }
+    return true;
+}
+
 // Walks the 8^3 bricks of `level` crossed by [t0, t1] (Amanatides-Woo DDA) and integrates
 // only the occupied ones, sampling each brick's lattice directly.
-bool marchSkipping(const RenderLevel& level, const Vec3d& q0, const Vec3d& qd, double t0,
-                   double t1, double stepT, const MarchOptions& o, RayResult& r) {
+bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, double t1,
+                   double stepT, const MarchOptions& o, RayResult& r) {
     constexpr double kBrick = RenderLevel::kBrick;
-    const Vec3d origin = level.latticeOrigin.asVec3d();
-    const Vec3d u0 = q0 - origin;  // lattice coordinates of the ray origin
-    // Brick-space ray: b(t) = (q0 - origin + t qd) / 8.
-    const Vec3d b0 = u0 / kBrick, bd = qd / kBrick;
-    const Vec3d start = b0 + bd * t0;
+    const Vec3d& qd = ray.qd;
+    const Vec3d u0 = ray.q0 - level.latticeOrigin.asVec3d();  // lattice coordinates of the origin
+    // Brick-space ray: b(t) = (u0 + t qd) / 8.
+    const Vec3d b0 = u0 / kBrick;
+    const Vec3d start = b0 + qd * (t0 / kBrick);
     int cell[3], step[3];
     double tNext[3], tDelta[3];
     for (int a = 0; a < 3; ++a) {
         cell[a] = std::clamp(int(std::floor(start[a])), 0, level.brickCount[a] - 1);
-        if (bd[a] > 0) {
+        if (qd[a] > 0) {
             step[a] = 1;
-            tNext[a] = (cell[a] + 1 - b0[a]) / bd[a];
-            tDelta[a] = 1.0 / bd[a];
-        } else if (bd[a] < 0) {
+            tNext[a] = ((cell[a] + 1) * kBrick - u0[a]) * ray.inv[a];
+            tDelta[a] = kBrick * ray.inv[a];
+        } else if (qd[a] < 0) {
             step[a] = -1;
-            tNext[a] = (cell[a] - b0[a]) / bd[a];
-            tDelta[a] = -1.0 / bd[a];
+            tNext[a] = (cell[a] * kBrick - u0[a]) * ray.inv[a];
+            tDelta[a] = -kBrick * ray.inv[a];
         } else {
             step[a] = 0;
             tNext[a] = tDelta[a] = std::numeric_limits<double>::infinity();
@@ -106,8 +223,7 @@ bool marchSkipping(const RenderLevel& level, const Vec3d& q0, const Vec3d& qd, d
     }
     double t = t0;
     while (t < t1) {
-        const int axis = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2)
-                                             : (tNext[1] < tNext[2] ? 1 : 2);
+        const int axis = nearestAxis(tNext);
         const double tExit = std::min(tNext[axis], t1);
         if (tExit > t) {
             const int b = level.brickIndex(cell[0], cell[1], cell[2]);
@@ -115,12 +231,16 @@ bool marchSkipping(const RenderLevel& level, const Vec3d& q0, const Vec3d& qd, d
                 const float* brick = level.brickPointer(b);
                 // Ray in this brick's own lattice coordinates.
                 const Vec3d ub = u0 - Vec3d(cell[0], cell[1], cell[2]) * kBrick;
+                if (o.cellNodes > 0) {
+                    if (!marchCells(brick, level.cellMask(b), ub, qd, ray.inv, t, tExit, o, r)) return false;
+                } else {
                 const auto sample = [&](double tt) {
                     return RenderLevel::sampleLattice(brick, float(ub[0] + qd[0] * tt),
                                                       float(ub[1] + qd[1] * tt),
                                                       float(ub[2] + qd[2] * tt));
                 };
                 if (!integrateSpan(sample, t, tExit, stepT, o, r)) return false;
+                }
             }
         }
         t = std::max(t, tExit);
@@ -137,16 +257,17 @@ RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d&
                    const MarchOptions& options) {
     RayResult result;
     Piece pieces[RenderVolume::kMaxPieces];
-    const int count = volume.partitionRay(origin, dir, pieces);
+    LevelRay rays[RenderVolume::kMaxLevels];
+    const int count = volume.partitionRay(origin, dir, pieces, rays);
     for (int p = 0; p < count; ++p) {
         const RenderLevel& level = volume.levels[pieces[p].level];
-        const Vec3d q0 = level.toIndex(origin), qd = level.directionToIndex(dir);
-        // One voxel of this level along the ray, in scene units.
-        const double stepT = options.stepVoxels / qd.length();
-        const auto sample = [&](double t) { return level.sample(q0 + qd * t); };
+        const LevelRay& ray = rays[pieces[p].level];
+        // One voxel of this level along the ray, in scene units (fixed steps only).
+        const double stepT = options.cellNodes > 0 ? 0.0 : options.stepVoxels / ray.qd.length();
+        const auto sample = [&](double t) { return level.sample(ray.q0 + ray.qd * t); };
         const bool keepGoing =
-            options.skipEmptySpace
-                ? marchSkipping(level, q0, qd, pieces[p].t0, pieces[p].t1, stepT, options, result)
+            options.skipEmptySpace || options.cellNodes > 0
+                ? marchSkipping(level, ray, pieces[p].t0, pieces[p].t1, stepT, options, result)
                 : integrateSpan(sample, pieces[p].t0, pieces[p].t1, stepT, options, result);
         if (!keepGoing) break;
     }

@@ -11,6 +11,18 @@
 // midpoint does not see (a first-order error in the colour where a lamp meets a wall). Such a
 // step is re-integrated in up to kMaxSubsteps equal sub-steps of optical depth near the bound.
 // The cost is bounded because the ray terminates within a few optical depths after it.
+//
+// Cell quadrature (cellNodes > 0, the default): instead of fixed steps, the ray is cut where it
+// crosses the lattice planes of the trilinear interpolation, so that inside each piece sigma and
+// emission are smooth (cubic in t) and the kinks of trilinear interpolation fall on piece
+// boundaries. Each piece is split into cellNodes sub-segments of Gauss-Legendre weight, each
+// taking the medium at its Gauss node: the optical depth of a piece is then exact for
+// polynomials of degree 2 cellNodes - 1 (exact for trilinear media with 2 nodes), and with a
+// constant colour so is the radiance. Lattice cells whose eight corners are all empty are
+// skipped without sampling (exact: the field is zero inside them). A piece whose optical depth
+// per node, times the transmittance in front of it, exceeds maxStepOpticalDepth is halved
+// (recursively): where a ray meets a surface the parts get short where the density is, and the
+// light hidden behind the first optical depths is not refined for nothing.
 #pragma once
 
 #include "render/render_volume.h"
@@ -24,12 +36,15 @@ struct MarchOptions {
     double minTransmittance = 1e-4;   // stop once T drops below this (0: never stop early)
     bool skipEmptySpace = true;       // jump over empty 8^3 bricks with a DDA
     double maxStepOpticalDepth = 0.5; // sub-divide steps thicker than this (sigma * dt)
+    int cellNodes = 2;                // Gauss nodes per lattice cell (1-3); 0: fixed steps of
+                                      // stepVoxels (cell quadrature ignores stepVoxels and
+                                      // always skips empty bricks and cells)
 
     // Fine fixed step, thin sub-steps, no skipping, no early stop: the answer other settings
     // are measured against.
-    static MarchOptions reference() { return {0.05, 0.0, false, 0.02}; }
-    // Throws InputError for non-positive or absurd steps, a threshold outside [0, 1), or a
-    // non-positive maxStepOpticalDepth.
+    static MarchOptions reference() { return {0.05, 0.0, false, 0.02, 0}; }
+    // Throws InputError for non-positive or absurd steps, a threshold outside [0, 1), a
+    // non-positive maxStepOpticalDepth, or cellNodes outside [0, 3].
     void validate() const;
 };
 

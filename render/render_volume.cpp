@@ -18,22 +18,52 @@ constexpr int kLatticeValues = RenderLevel::kLattice * RenderLevel::kLattice * R
 float cleanSigma(float s) { return std::isfinite(s) && s > 0.f ? std::min(s, 1e15f) : (s > 0.f ? 1e15f : 0.f); }
 float cleanRadiance(float c) { return std::isfinite(c) && c > 0.f ? std::min(c, 1e15f) : (c > 0.f ? 1e15f : 0.f); }
 
-// Slab test of a ray q(t) = q0 + t qd against [lo, hi]; returns false when it misses.
-bool intersectBox(const Vec3d& q0, const Vec3d& qd, const Vec3d& lo, const Vec3d& hi,
-                  double& tNear, double& tFar) {
+// Slab test of a level ray against [lo, hi]; returns false when it misses.
+inline bool intersectBox(const LevelRay& ray, const Vec3d& lo, const Vec3d& hi, double& tNear,
+                  double& tFar) {
     tNear = 0.0;
     tFar = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
-        if (qd[a] == 0.0) {
-            if (q0[a] < lo[a] || q0[a] > hi[a]) return false;
+        if (ray.qd[a] == 0.0) {
+            if (ray.q0[a] < lo[a] || ray.q0[a] > hi[a]) return false;
             continue;
         }
-        double t0 = (lo[a] - q0[a]) / qd[a], t1 = (hi[a] - q0[a]) / qd[a];
+        double t0 = (lo[a] - ray.q0[a]) * ray.inv[a], t1 = (hi[a] - ray.q0[a]) * ray.inv[a];
         if (t0 > t1) std::swap(t0, t1);
         tNear = std::max(tNear, t0);
         tFar = std::min(tFar, t1);
     }
     return tNear < tFar;
+}
+
+// Appends the occupancy words of one brick's lattice (RenderLevel::cellMask).
+void appendCellMask(const std::vector<float>& lattice, std::vector<uint64_t>& masks) {
+    constexpr int n = RenderLevel::kLattice;
+    const auto dense = [&](int x, int y, int z) { return lattice[std::size_t((z * n + y) * n + x) * 4] > 0.f; };
+    for (int z = 0; z < RenderLevel::kBrick; ++z) {
+        uint64_t word = 0;
+        for (int y = 0; y < RenderLevel::kBrick; ++y)
+            for (int x = 0; x < RenderLevel::kBrick; ++x) {
+                bool any = false;
+                for (int c = 0; c < 8 && !any; ++c) any = dense(x + (c & 1), y + ((c >> 1) & 1), z + (c >> 2));
+                if (any) word |= uint64_t(1) << (x + RenderLevel::kBrick * y);
+            }
+        masks.push_back(word);
+    }
+}
+
+// True if the box of `inner` lies inside the box of `outer` (both in world space), up to
+// 1e-6 voxels of `outer` for the rounding of the two transforms.
+bool boxInside(const RenderLevel& inner, const RenderLevel& outer) {
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3d q(corner & 1 ? inner.domainHi.x() : inner.domainLo.x(),
+                      corner & 2 ? inner.domainHi.y() : inner.domainLo.y(),
+                      corner & 4 ? inner.domainHi.z() : inner.domainLo.z());
+        const Vec3d p = outer.toIndex(inner.indexToWorld * (q - inner.indexOffset));
+        for (int a = 0; a < 3; ++a)
+            if (p[a] < outer.domainLo[a] - 1e-6 || p[a] > outer.domainHi[a] + 1e-6) return false;
+    }
+    return true;
 }
 
 RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel>& coarser) {
@@ -148,6 +178,7 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
         if (lattice[b].empty()) continue;
         out.brickTable[b] = next++;
         out.brickData.insert(out.brickData.end(), lattice[b].begin(), lattice[b].end());
+        appendCellMask(lattice[b], out.cellMasks);
     }
     return out;
 }
@@ -180,6 +211,9 @@ bool RenderLevel::brickOccupied(int bx, int by, int bz) const {
 
 RenderVolume::RenderVolume(const LightingVolume& volume) {
     volume.validate();
+    if (volume.levels.size() > std::size_t(kMaxLevels))
+        throw InputError("the volume has " + std::to_string(volume.levels.size()) +
+                         " levels; the renderer supports at most " + std::to_string(kMaxLevels));
     std::size_t stored = 0;
     for (const VolumeLevel& level : volume.levels) {
         levels.push_back(prepareLevel(level, levels));
@@ -188,16 +222,44 @@ RenderVolume::RenderVolume(const LightingVolume& volume) {
             throw ResourceError("the volume holds more non-empty bricks than the renderer's "
                                 "memory bound (" + std::to_string(kMaxStoredBricks) + ")");
     }
+    nested_ = true;
+    for (std::size_t k = 1; k < levels.size(); ++k) nested_ = nested_ && boxInside(levels[k], levels[k - 1]);
 }
 
-int RenderVolume::partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces) const {
+int RenderVolume::partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+                               LevelRay* levelRays) const {
+    if (!nested_) return partitionRayGeneral(origin, dir, pieces, levelRays);
+    // Nested boxes: the ray's interval in a finer level lies inside its interval in every
+    // coarser level, so the pieces, in ray order, are the coarser levels' entry parts
+    // (coarsest first), the finest level hit, then their exit parts (finest first).
+    const int n = int(levels.size());
+    double lo[kMaxPieces], hi[kMaxPieces];
+    int hit = 0;  // levels 0 .. hit-1 are hit (a level missed means every finer one is too)
+    for (; hit < n; ++hit) {
+        const RenderLevel& level = levels[hit];
+        const LevelRay ray = level.ray(origin, dir);
+        if (levelRays) levelRays[hit] = ray;
+        if (!intersectBox(ray, level.domainLo, level.domainHi, lo[hit], hi[hit])) break;
+    }
+    int count = 0;
+    for (int k = 0; k + 1 < hit; ++k)
+        if (lo[k + 1] > lo[k]) pieces[count++] = {lo[k], lo[k + 1], k};
+    if (hit > 0) pieces[count++] = {lo[hit - 1], hi[hit - 1], hit - 1};
+    for (int k = hit - 2; k >= 0; --k)
+        if (hi[k] > hi[k + 1]) pieces[count++] = {hi[k + 1], hi[k], k};
+    return count;
+}
+
+int RenderVolume::partitionRayGeneral(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+                                      LevelRay* levelRays) const {
     int count = 0;
     // Finest first: each level claims the parts of its interval no finer level has claimed.
     for (int k = int(levels.size()) - 1; k >= 0; --k) {
         const RenderLevel& level = levels[k];
         double a, b;
-        if (!intersectBox(level.toIndex(origin), level.directionToIndex(dir), level.domainLo,
-                          level.domainHi, a, b))
+        const LevelRay ray = level.ray(origin, dir);
+        if (levelRays) levelRays[k] = ray;
+        if (!intersectBox(ray, level.domainLo, level.domainHi, a, b))
             continue;
         // Subtract claimed intervals from [a, b]; claimed pieces are disjoint.
         double free0[kMaxPieces + 1], free1[kMaxPieces + 1];
@@ -253,7 +315,8 @@ std::size_t RenderVolume::storedBricks() const {
 std::size_t RenderVolume::memoryBytes() const {
     std::size_t n = 0;
     for (const auto& l : levels)
-        n += l.brickData.size() * sizeof(float) + l.brickTable.size() * sizeof(int32_t);
+        n += l.brickData.size() * sizeof(float) + l.brickTable.size() * sizeof(int32_t) +
+             l.cellMasks.size() * sizeof(uint64_t);
     return n;
 }
 

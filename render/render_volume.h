@@ -24,6 +24,13 @@ namespace lh {
 
 struct Piece;
 
+// A ray in one level's continuous index coordinates: q(t) = q0 + t qd, t in scene units along
+// the world ray, with the reciprocals of qd's components (infinite where a component is 0)
+// so that the DDAs multiply instead of divide.
+struct LevelRay {
+    Vec3d q0, qd, inv;
+};
+
 // Medium sample in the render representation.
 struct RenderSample {
     float sigma;        // extinction, per scene unit
@@ -39,6 +46,10 @@ public:
     // World -> continuous index coordinates (voxel centres at integers).
     Vec3d toIndex(const Vec3d& world) const { return worldToIndex * world + indexOffset; }
     Vec3d directionToIndex(const Vec3d& dir) const { return worldToIndex * dir; }
+    LevelRay ray(const Vec3d& origin, const Vec3d& dir) const {
+        const Vec3d q0 = toIndex(origin), qd = directionToIndex(dir);
+        return {q0, qd, Vec3d(1.0 / qd.x(), 1.0 / qd.y(), 1.0 / qd.z())};
+    }
 
     // True if continuous index coordinates lie inside the domain's outer voxel faces.
     bool containsIndex(const Vec3d& q) const {
@@ -68,6 +79,9 @@ public:
         }
         return {out[0], {out[1], out[2], out[3]}};
     }
+    // Occupancy of a stored brick's 8^3 lattice cells: bit (x + 8 y) of word z is set if any of
+    // the cell's eight corners (x..x+1, y..y+1, z..z+1) has density.
+    const uint64_t* cellMask(int stored) const { return cellMasks.data() + std::size_t(stored) * kBrick; }
     const float* brickPointer(int stored) const {
         return brickData.data() + std::size_t(stored) * kLattice * kLattice * kLattice * 4;
     }
@@ -85,6 +99,7 @@ public:
     std::array<int, 3> brickCount{0, 0, 0};
     std::vector<int32_t> brickTable;  // -1 = empty brick
     std::vector<float> brickData;     // kLattice^3 x 4 floats per stored brick
+    std::vector<uint64_t> cellMasks;  // kBrick words per stored brick (cellMask)
     double voxelVolume = 0;           // scene units^3
 };
 
@@ -98,8 +113,18 @@ public:
 
     // Ray partition by the finest-wins rule: the ordered t-intervals of a ray (origin, unit
     // direction) and the level that defines the medium on each. Returns the piece count.
+    // With `levelRays` (kMaxLevels entries), also the ray in every level a piece refers to.
     static constexpr int kMaxPieces = 64;
-    int partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces) const;
+    static constexpr int kMaxLevels = 32;  // the constructor refuses more (InputError)
+    int partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+                     LevelRay* levelRays = nullptr) const;
+    // The same for any arrangement of levels (overlapping, disjoint): subtracts the intervals
+    // finer levels claimed. partitionRay uses it unless every level lies inside the next
+    // coarser one (the usual multiscale layout), where each level's interval minus the next
+    // finer level's interval is at most two pieces and no subtraction or sort is needed.
+    int partitionRayGeneral(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+                            LevelRay* levelRays = nullptr) const;
+    bool nestedLevels() const { return nested_; }
 
     // Field at a world point under finest-wins (for tests and reference checks).
     RenderSample sampleWorld(const Vec3d& world) const;
@@ -109,6 +134,9 @@ public:
 
     std::size_t storedBricks() const;
     std::size_t memoryBytes() const;
+
+private:
+    bool nested_ = false;  // every level's box inside the next coarser level's box
 };
 
 struct Piece {

@@ -6,6 +6,7 @@
 #include "render/baseline_renderers.h"
 #include "render/image_io.h"
 #include "render/metrics.h"
+#include "render/svg_plot.h"
 #include "vdb/sparsity.h"
 #include "vdb/volume_io.h"
 
@@ -83,6 +84,8 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
     std::vector<SpeedErrorRow> rows;
     const auto measure = [&](const std::string& method, const std::string& setting,
                              const std::function<ImageRGB(const Vec3d&)>& render) {
+        if (!o.methods.empty() && std::find(o.methods.begin(), o.methods.end(), method) == o.methods.end())
+            return;
         say(method + ", " + setting);
         std::vector<ImageRGB> images;
         const auto start = std::chrono::steady_clock::now();
@@ -93,17 +96,26 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
     };
     // How converged the reference is: the same at half the step and optical depth per step.
     measure("reference-check", "step 0.025, tau<0.01", [&](const Vec3d& p) {
-        return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{0.025, 0.0, false, 0.01}});
+        return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{0.025, 0.0, false, 0.01, 0}});
     });
     for (double tauMax : {0.5, 0.1})
         for (double threshold : {1e-4, 1e-2})
             for (double step : {0.25, 0.5, 1.0, 2.0}) {
                 std::ostringstream s;
                 s << "step " << step << ", T<" << threshold << ", tau<" << tauMax;
-                measure("ours", s.str(), [&](const Vec3d& p) {
-                    return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{step, threshold, true, tauMax}});
+                measure("ours-steps", s.str(), [&](const Vec3d& p) {
+                    return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{step, threshold, true, tauMax, 0}});
                 });
             }
+    for (double tauMax : {0.1, 0.25, 0.5, 1.0})
+        for (int nodes : {1, 2, 3}) {
+            std::ostringstream s;
+            s << nodes << " Gauss node" << (nodes > 1 ? "s" : "") << "/cell, tau<" << tauMax;
+            MarchOptions march;
+            march.maxStepOpticalDepth = tauMax;
+            march.cellNodes = nodes;
+            measure("ours-cells", s.str(), [&](const Vec3d& p) { return renderEnvmap(prepared, p, {o.width, o.height, march}); });
+        }
     for (double step : {0.5, 1.0, 2.0})
         measure("openvdb-fixed-step", "step " + std::to_string(step).substr(0, 4),
                 [&](const Vec3d& p) { return renderEnvmapOpenVdbFixedStep(volume, p, o.width, o.height, step); });
@@ -115,46 +127,20 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
 
 namespace {
 
-std::string svgPlot(const std::vector<SpeedErrorRow>& rows) {
-    // Log-log axes: x = ms per envmap, y = relative RMSE.
-    double x0 = 1e30, x1 = 0, y0 = 1e30, y1 = 0;
-    for (const auto& r : rows) {
-        x0 = std::min(x0, r.msPerEnvmap), x1 = std::max(x1, r.msPerEnvmap);
-        const double e = std::max(r.relativeRmse, 1e-6);
-        y0 = std::min(y0, e), y1 = std::max(y1, e);
-    }
-    x0 = std::pow(10, std::floor(std::log10(x0))), x1 = std::pow(10, std::ceil(std::log10(x1)));
-    y0 = std::pow(10, std::floor(std::log10(y0))), y1 = std::pow(10, std::ceil(std::log10(y1)));
-    const double W = 640, H = 420, L = 70, R = 180, T = 20, B = 50;
-    const auto px = [&](double x) { return L + (std::log10(x) - std::log10(x0)) / (std::log10(x1) - std::log10(x0)) * (W - L - R); };
-    const auto py = [&](double y) { return T + (std::log10(y1) - std::log10(std::max(y, 1e-6))) / (std::log10(y1) - std::log10(y0)) * (H - T - B); };
-    std::ostringstream s;
-    s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' font-family='sans-serif' font-size='12'>\n"
-      << "<rect width='100%' height='100%' fill='white'/>\n";
-    for (double x = x0; x <= x1 * 1.001; x *= 10)
-        s << "<line x1='" << px(x) << "' y1='" << T << "' x2='" << px(x) << "' y2='" << H - B << "' stroke='#ddd'/>"
-          << "<text x='" << px(x) << "' y='" << H - B + 16 << "' text-anchor='middle'>" << x << "</text>\n";
-    for (double y = y0; y <= y1 * 1.001; y *= 10)
-        s << "<line x1='" << L << "' y1='" << py(y) << "' x2='" << W - R << "' y2='" << py(y) << "' stroke='#ddd'/>"
-          << "<text x='" << L - 6 << "' y='" << py(y) + 4 << "' text-anchor='end'>" << y << "</text>\n";
-    s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>ms per 240x120 envmap (2 cores)</text>\n"
-      << "<text x='16' y='" << (T + H - B) / 2 << "' transform='rotate(-90 16 " << (T + H - B) / 2
-      << ")' text-anchor='middle'>RMSE / mean radiance</text>\n";
-    const std::map<std::string, std::string> colours = {{"ours", "#d62728"}, {"openvdb-fixed-step", "#1f77b4"}, {"paper-spheres", "#2ca02c"}, {"reference-check", "#7f7f7f"}};
-    int legend = 0;
+// Time against error, log-log, one series per method.
+std::string speedErrorSvg(const std::vector<SpeedErrorRow>& rows) {
+    const std::map<std::string, std::string> colours = {
+        {"ours-steps", "#d62728"}, {"ours-cells", "#9467bd"}, {"openvdb-fixed-step", "#1f77b4"},
+        {"paper-spheres", "#2ca02c"}, {"reference-check", "#7f7f7f"}};
+    std::vector<PlotSeries> series;
     for (const auto& [method, colour] : colours) {
-        std::vector<SpeedErrorRow> mine;
+        PlotSeries sr{method, colour, {}, false};
         for (const auto& r : rows)
-            if (r.method == method) mine.push_back(r);
-        if (mine.empty()) continue;
-        std::sort(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.msPerEnvmap < b.msPerEnvmap; });
-        for (const auto& r : mine)
-            s << "<circle cx='" << px(r.msPerEnvmap) << "' cy='" << py(r.relativeRmse) << "' r='4' fill='" << colour
-              << "'><title>" << r.method << ": " << r.setting << "</title></circle>\n";
-        s << "<text x='" << W - R + 12 << "' y='" << T + 20 + 18 * legend++ << "' fill='" << colour << "'>" << method << "</text>\n";
+            if (r.method == method) sr.points.push_back({r.msPerEnvmap, r.relativeRmse, r.method + ": " + r.setting});
+        series.push_back(sr);
     }
-    s << "</svg>\n";
-    return s.str();
+    return svgPlot({"ms per 240x120 envmap (2 cores)", true, 10, 1e-3},
+                   {"RMSE / mean radiance", true, 10, 1e-6}, series);
 }
 
 }  // namespace
@@ -175,7 +161,7 @@ void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::st
     const std::filesystem::path dir(directory);
     writeTextFile((dir / "speed_error.csv").string(), csv.str());
     writeTextFile((dir / "speed_error.md").string(), md.str());
-    writeTextFile((dir / "speed_error.svg").string(), svgPlot(rows));
+    writeTextFile((dir / "speed_error.svg").string(), speedErrorSvg(rows));
 }
 
 // ---- Memory against error ----
@@ -325,49 +311,16 @@ BoundChoice chooseSparsityBound(const LightingVolume& volume, double requiredPsn
 
 namespace {
 
+// Bytes (log) against PSNR vs the unpruned envmaps (linear, 100 = identical), in memory and
+// on disk, with the target (a tenth of dense storage) marked.
 std::string memorySvg(const std::vector<MemoryErrorRow>& rows, double denseBytes) {
-    // x = bytes (log), y = PSNR against the unpruned envmaps (linear, capped at 100).
-    double x0 = 1e30, x1 = 0;
-    for (const auto& r : rows)
-        for (double b : {double(r.memoryBytes), double(r.diskBytesHalf)})
-            x0 = std::min(x0, b), x1 = std::max(x1, b);
-    x1 = std::max(x1, denseBytes);
-    x0 = std::pow(10, std::floor(std::log10(std::max(x0, 1.0)))), x1 = std::pow(10, std::ceil(std::log10(x1)));
-    double y0 = 100, y1 = 100;
-    for (const auto& r : rows) y0 = std::min(y0, r.psnrVsUnpruned);
-    y0 = std::floor(y0 / 10) * 10 - 10;
-    const double W = 640, H = 420, L = 70, R = 190, T = 20, B = 50;
-    const auto px = [&](double x) { return L + (std::log10(std::max(x, 1.0)) - std::log10(x0)) / (std::log10(x1) - std::log10(x0)) * (W - L - R); };
-    const auto py = [&](double y) { return T + (y1 - y) / (y1 - y0) * (H - T - B); };
-    std::ostringstream s;
-    s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' font-family='sans-serif' font-size='12'>\n"
-      << "<rect width='100%' height='100%' fill='white'/>\n";
-    for (double x = x0; x <= x1 * 1.001; x *= 10)
-        s << "<line x1='" << px(x) << "' y1='" << T << "' x2='" << px(x) << "' y2='" << H - B << "' stroke='#ddd'/>"
-          << "<text x='" << px(x) << "' y='" << H - B + 16 << "' text-anchor='middle'>" << x << "</text>\n";
-    for (double y = y0; y <= y1 + 1e-9; y += 10)
-        s << "<line x1='" << L << "' y1='" << py(y) << "' x2='" << W - R << "' y2='" << py(y) << "' stroke='#ddd'/>"
-          << "<text x='" << L - 6 << "' y='" << py(y) + 4 << "' text-anchor='end'>" << y << "</text>\n";
-    s << "<line x1='" << px(denseBytes / 10) << "' y1='" << T << "' x2='" << px(denseBytes / 10) << "' y2='" << H - B
-      << "' stroke='#888' stroke-dasharray='4 3'/><text x='" << px(denseBytes / 10) + 4 << "' y='" << T + 12
-      << "' fill='#555'>dense / 10</text>\n";
-    s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>bytes</text>\n"
-      << "<text x='16' y='" << (T + H - B) / 2 << "' transform='rotate(-90 16 " << (T + H - B) / 2
-      << ")' text-anchor='middle'>PSNR vs unpruned envmaps (dB, 100 = identical)</text>\n";
-    const struct { const char* name; const char* colour; bool disk; } series[] = {
-        {"in memory", "#d62728", false}, {"on disk (Blosc, half)", "#1f77b4", true}};
-    int legend = 0;
-    for (const auto& sr : series) {
-        s << "<polyline fill='none' stroke='" << sr.colour << "' points='";
-        for (const auto& r : rows) s << px(sr.disk ? r.diskBytesHalf : r.memoryBytes) << "," << py(r.psnrVsUnpruned) << " ";
-        s << "'/>\n";
-        for (const auto& r : rows)
-            s << "<circle cx='" << px(sr.disk ? r.diskBytesHalf : r.memoryBytes) << "' cy='" << py(r.psnrVsUnpruned)
-              << "' r='4' fill='" << sr.colour << "'><title>" << r.setting << "</title></circle>\n";
-        s << "<text x='" << W - R + 12 << "' y='" << T + 20 + 18 * legend++ << "' fill='" << sr.colour << "'>" << sr.name << "</text>\n";
+    PlotSeries memory{"in memory", "#d62728", {}, true}, disk{"on disk (Blosc, half)", "#1f77b4", {}, true};
+    for (const auto& r : rows) {
+        memory.points.push_back({double(r.memoryBytes), r.psnrVsUnpruned, r.setting});
+        disk.points.push_back({double(r.diskBytesHalf), r.psnrVsUnpruned, r.setting});
     }
-    s << "</svg>\n";
-    return s.str();
+    return svgPlot({"bytes", true, 10, 1.0}, {"PSNR vs unpruned envmaps (dB, 100 = identical)", false, 10, 0},
+                   {memory, disk}, {{denseBytes / 10, "dense / 10"}});
 }
 
 }  // namespace

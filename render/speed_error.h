@@ -17,10 +17,13 @@ struct SpeedErrorOptions {
     int points = 8;               // random query points in free space
     int width = 240, height = 120;
     uint64_t seed = 1;
+    // Methods to measure ("reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step",
+    // "paper-spheres"); empty: all of them.
+    std::vector<std::string> methods;
 };
 
 struct SpeedErrorRow {
-    std::string method;    // "ours", "openvdb-fixed-step", "paper-spheres"
+    std::string method;    // "ours-cells", "ours-steps", "openvdb-fixed-step", "paper-spheres"
     std::string setting;   // e.g. "step 0.5, T<1e-4"
     double msPerEnvmap = 0;
     double relativeRmse = 0;  // RMSE of linear radiance / mean reference radiance
@@ -53,7 +56,7 @@ struct MemoryErrorOptions {
     // Errors are measured with fine steps, so that they show what pruning changed and not
     // where the default steps happen to fall (pruning moves level boundaries, hence steps);
     // speed is timed with the default settings.
-    MarchOptions errorMarch{0.1, 1e-6, true, 0.05};
+    MarchOptions errorMarch{0.1, 1e-6, true, 0.05, 0};
 };
 
 struct MemoryErrorRow {

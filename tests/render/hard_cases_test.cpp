@@ -35,16 +35,24 @@ void expectSlab(const RayResult& r, double sigma, double color, double length, d
     EXPECT_NEAR(r.radiance[0], color * (1 - t), relative * color * (1 - t) + 1e-12);
 }
 
+// Both quadratures: fixed 0.5-voxel steps and (the default) 2 Gauss nodes per lattice cell.
+MarchOptions quadrature(int cellNodes) {
+    MarchOptions o;
+    o.cellNodes = cellNodes;
+    return o;
+}
+
 const float kInf = std::numeric_limits<float>::infinity();
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 TEST(HardCases, HugeAndInfiniteDensityIsOpaqueAndFinite) {
-    for (float sigma : {1e30f, kInf, std::numeric_limits<float>::max()}) {
-        const RayResult r = marchRay(cube(sigma, openvdb::Vec3s(3.f)), Vec3d(0.0), Vec3d(1, 0, 0), MarchOptions{});
-        expectFinite(r);
-        EXPECT_NEAR(r.radiance[0], 3.0, 1e-5) << sigma;
-        EXPECT_EQ(r.transmittance, 0.0);
-    }
+    for (int nodes : {0, 2})
+        for (float sigma : {1e30f, kInf, std::numeric_limits<float>::max()}) {
+            const RayResult r = marchRay(cube(sigma, openvdb::Vec3s(3.f)), Vec3d(0.0), Vec3d(1, 0, 0), quadrature(nodes));
+            expectFinite(r);
+            EXPECT_NEAR(r.radiance[0], 3.0, 1e-5) << sigma << ", nodes " << nodes;
+            EXPECT_EQ(r.transmittance, 0.0);
+        }
 }
 
 TEST(HardCases, HdrRadianceKeepsRelativePrecision) {
@@ -117,16 +125,24 @@ TEST(HardCases, TransmittanceUnderflowAfterLongRays) {
     // still be the colour, finite, with transmittance exactly 0.
     const RenderVolume volume(test::volumeOf({test::makeLevel(
         1.0, Vec3d(-20), openvdb::Coord(40), [](const Vec3d&) { return MediumSample{30.f, openvdb::Vec3s(0.5f)}; })}));
-    const RayResult r = marchRay(volume, Vec3d(-20, 0, 0), Vec3d(1, 0, 0), MarchOptions{0.5, 0.0, false});
-    expectFinite(r);
-    EXPECT_NEAR(r.radiance[0], 0.5, 1e-6);
-    EXPECT_EQ(r.transmittance, 0.0);
+    for (int nodes : {0, 2}) {
+        MarchOptions o = quadrature(nodes);
+        o.minTransmittance = 0.0;
+        o.skipEmptySpace = false;
+        const RayResult r = marchRay(volume, Vec3d(-20, 0, 0), Vec3d(1, 0, 0), o);
+        expectFinite(r);
+        EXPECT_NEAR(r.radiance[0], 0.5, 1e-6) << "nodes " << nodes;
+        EXPECT_EQ(r.transmittance, 0.0);
+    }
 }
 
 TEST(HardCases, TinyAndHugeSteps) {
     const RenderVolume volume = cube(0.9f, openvdb::Vec3s(1.f));
-    for (double step : {1e-4, 64.0})
-        expectSlab(marchRay(volume, Vec3d(0.0), Vec3d(0, 1, 0), MarchOptions{step, 0.0, true}), 0.9, 1.0, 1.0);
+    for (double step : {1e-4, 64.0}) {
+        MarchOptions o{step, 0.0, true};
+        o.cellNodes = 0;  // fixed steps
+        expectSlab(marchRay(volume, Vec3d(0.0), Vec3d(0, 1, 0), o), 0.9, 1.0, 1.0);
+    }
     EXPECT_THROW((MarchOptions{1e-5, 0.0, true}.validate()), InputError);
     EXPECT_THROW((MarchOptions{100.0, 0.0, true}.validate()), InputError);
 }

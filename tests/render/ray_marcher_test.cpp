@@ -35,6 +35,7 @@ TEST(RayMarcher, HomogeneousSlabIsExactForEveryStep) {
     for (double step : {0.05, 0.25, 0.5, 1.0, 3.0, 16.0})
         for (bool skip : {true, false}) {
             MarchOptions o{step, 0.0, skip};
+            o.cellNodes = 0;  // fixed steps (cell quadrature: cell_quadrature_test.cpp)
             // From the centre to the +x face: L = 1.
             expectSlab(volume, Vec3d(0), Vec3d(1, 0, 0), 1.0, sigma, color, o);
             // From outside, through the whole cube along a diagonal in the xz plane.
@@ -83,6 +84,9 @@ TEST(RayMarcher, ImpossibleOptionsAreRefused) {
     EXPECT_THROW((MarchOptions{std::nan(""), 1e-4, true}.validate()), InputError);
     EXPECT_THROW((MarchOptions{0.5, 1.5, true}.validate()), InputError);
     EXPECT_NO_THROW(MarchOptions::reference().validate());
+    MarchOptions fourNodes;
+    fourNodes.cellNodes = 4;
+    EXPECT_THROW(fourNodes.validate(), InputError);
 }
 
 }  // namespace

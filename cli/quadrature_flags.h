@@ -1,0 +1,25 @@
+// The march quadrature flags shared by render-envmap and render-view: cell quadrature (Gauss
+// nodes per lattice cell) by default, or fixed steps when the user gives --step.
+#pragma once
+
+#include "render/ray_marcher.h"
+
+#include <CLI/CLI.hpp>
+
+namespace lh::cli {
+
+struct QuadratureFlags {
+    double stepVoxels = MarchOptions{}.stepVoxels;
+    int gaussNodes = MarchOptions{}.cellNodes;
+    const CLI::Option* step = nullptr;
+    const CLI::Option* nodes = nullptr;
+
+    // --step alone selects fixed steps; --step with --gauss-nodes above 0 is refused
+    // (InputError), since cell quadrature has no step.
+    void applyTo(MarchOptions& march) const;
+};
+
+// Adds --gauss-nodes and --step to `cmd`, bound to `flags`.
+void addQuadratureFlags(CLI::App* cmd, QuadratureFlags& flags);
+
+}  // namespace lh::cli
