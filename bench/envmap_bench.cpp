@@ -1,5 +1,5 @@
 // Envmap rendering speed on the bundled example room (5 x 64^3), 240x120, at several
-// points and step settings. Run: build/bench/lighthouse_bench [--benchmark_filter=...]
+// points, with the default cell quadrature and with fixed steps. Run: build/bench/lighthouse_bench [--benchmark_filter=...]
 // With LIGHTHOUSE_BENCH_VOLUME=FILE.vdb set, BM_EnvmapFile also times that volume at the
 // random free-space points `lighthouse bench-envmap` uses (seed 1), per quadrature setting.
 #include "render/envmap.h"
@@ -20,18 +20,19 @@ const lh::RenderVolume& exampleRoom() {
 
 const lh::Vec3d kPoints[] = {lh::Vec3d(0, 0, 2), lh::Vec3d(0.2, 0.1, 0.4), lh::Vec3d(-1, 0.5, 4)};
 
+// Arg: 0 = the default cell quadrature, else fixed steps of (arg / 100) voxels.
 void BM_EnvmapExampleRoom(benchmark::State& state) {
     lh::EnvmapOptions options;
-    options.march.stepVoxels = double(state.range(0)) / 100.0;
+    if (state.range(0) > 0) options.march.cellNodes = 0, options.march.stepVoxels = double(state.range(0)) / 100.0;
     std::size_t i = 0;
     for (auto _ : state) {
         lh::ImageRGB env = lh::renderEnvmap(exampleRoom(), kPoints[i++ % 3], options);
         benchmark::DoNotOptimize(env.pixels.data());
     }
-    state.SetLabel("step " + std::to_string(options.march.stepVoxels) + " voxels");
+    state.SetLabel(options.march.cellNodes ? "2 Gauss nodes/cell" : "step " + std::to_string(options.march.stepVoxels) + " voxels");
     state.counters["envmaps/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_EnvmapExampleRoom)->Arg(25)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EnvmapExampleRoom)->Arg(0)->Arg(25)->Arg(50)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Arg: Gauss nodes per lattice cell (0: fixed 0.5-voxel steps).
 void BM_EnvmapFile(benchmark::State& state) {

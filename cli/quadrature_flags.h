@@ -11,6 +11,7 @@ namespace lh::cli {
 struct QuadratureFlags {
     double stepVoxels = MarchOptions{}.stepVoxels;
     int gaussNodes = MarchOptions{}.cellNodes;
+    double maxOpticalDepth = MarchOptions{}.maxStepOpticalDepth;
     const CLI::Option* step = nullptr;
     const CLI::Option* nodes = nullptr;
 
@@ -19,7 +20,7 @@ struct QuadratureFlags {
     void applyTo(MarchOptions& march) const;
 };
 
-// Adds --gauss-nodes and --step to `cmd`, bound to `flags`.
+// Adds --gauss-nodes, --max-optical-depth and --step to `cmd`, bound to `flags`.
 void addQuadratureFlags(CLI::App* cmd, QuadratureFlags& flags);
 
 }  // namespace lh::cli

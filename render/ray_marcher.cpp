@@ -94,28 +94,15 @@ constexpr GaussRule kGaussRules[4] = {
     {3, {0.11270166537925831, 0.5, 0.88729833462074169}, {5.0 / 18, 8.0 / 18, 5.0 / 18}},
 };
 
-// The eight corners of one lattice cell (4 channels each), read in place from the brick:
-// trilinear lookups inside one cell share the address arithmetic and the cache lines.
+// One lattice cell of a brick, read in place: trilinear lookups inside one cell share the
+// address arithmetic and the cache lines.
 struct CellCorners {
-    static constexpr int sy = RenderLevel::kLattice * 4, sz = RenderLevel::kLattice * sy;
-    const float* p;  // corner (0, 0, 0); +4 floats is +x, +sy is +y, +sz is +z
+    const float* p;  // lattice point (0, 0, 0) of the cell
 
     CellCorners(const float* brick, const int cell[3])
-        : p(brick + cell[2] * sz + cell[1] * sy + cell[0] * 4) {}
+        : p(brick + cell[2] * RenderLevel::kLatticeZ + cell[1] * RenderLevel::kLatticeY + cell[0] * 4) {}
     // Cell-local coordinates in [0, 1] (clamped against rounding at the faces).
-    RenderSample at(float fx, float fy, float fz) const {
-        fx = std::clamp(fx, 0.f, 1.f), fy = std::clamp(fy, 0.f, 1.f), fz = std::clamp(fz, 0.f, 1.f);
-        float out[4];
-        for (int c = 0; c < 4; ++c) {
-            const float c00 = p[c] + fx * (p[4 + c] - p[c]);
-            const float c10 = p[sy + c] + fx * (p[sy + 4 + c] - p[sy + c]);
-            const float c01 = p[sz + c] + fx * (p[sz + 4 + c] - p[sz + c]);
-            const float c11 = p[sz + sy + c] + fx * (p[sz + sy + 4 + c] - p[sz + sy + c]);
-            const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
-            out[c] = c0 + fz * (c1 - c0);
-        }
-        return {out[0], {out[1], out[2], out[3]}};
-    }
+    RenderSample at(float fx, float fy, float fz) const { return RenderLevel::sampleCell(p, fx, fy, fz); }
 };
 
 // Axis of the smallest of three crossing distances, without branches (which the DDA loops

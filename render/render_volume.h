@@ -64,10 +64,15 @@ public:
     static RenderSample sampleLattice(const float* brick, float u, float v, float w) {
         const int i = std::clamp(int(u), 0, kBrick - 1), j = std::clamp(int(v), 0, kBrick - 1),
                   k = std::clamp(int(w), 0, kBrick - 1);
-        const float fx = std::clamp(u - float(i), 0.f, 1.f), fy = std::clamp(v - float(j), 0.f, 1.f),
-                    fz = std::clamp(w - float(k), 0.f, 1.f);
-        constexpr int sy = kLattice * 4, sz = kLattice * kLattice * 4;
-        const float* p = brick + (k * sz + j * sy + i * 4);
+        return sampleCell(brick + (k * kLatticeZ + j * kLatticeY + i * 4), u - float(i), v - float(j),
+                          w - float(k));
+    }
+    // Trilinear sample inside one lattice cell: `corner` points at its (0, 0, 0) lattice point
+    // (+4 floats is +x, +kLatticeY is +y, +kLatticeZ is +z), (fx, fy, fz) in [0, 1] (clamped).
+    static constexpr int kLatticeY = kLattice * 4, kLatticeZ = kLattice * kLattice * 4;
+    static RenderSample sampleCell(const float* p, float fx, float fy, float fz) {
+        fx = std::clamp(fx, 0.f, 1.f), fy = std::clamp(fy, 0.f, 1.f), fz = std::clamp(fz, 0.f, 1.f);
+        constexpr int sy = kLatticeY, sz = kLatticeZ;
         float out[4];
         for (int c = 0; c < 4; ++c) {  // lerps: exact for equal corners (constant media)
             const float c00 = p[c] + fx * (p[4 + c] - p[c]);

@@ -49,9 +49,11 @@ lighthouse_cli_ok(import_houdini
   STDOUT "exp_houdini -> imported_houdini[.]vdb: 3 level[(]s[)]"
   FILES imported_houdini.vdb
   ARGS import exp_houdini --from houdini -o imported_houdini.vdb)
-set_tests_properties(cli.ok.import_houdini PROPERTIES DEPENDS cli.ok.export_houdini)
+# Fixtures, not just an order: running an import test alone (ctest -R) runs the export first.
+set_tests_properties(cli.ok.export_houdini PROPERTIES FIXTURES_SETUP lighthouse_houdini_export)
+set_tests_properties(cli.ok.import_houdini PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_houdini_export")
 lighthouse_cli_error(import_houdini_export_as_blender
   EXPECT "exp_houdini.*exported for 'houdini', not for 'blender'"
   ABSENT imported_wrong.vdb
   ARGS import exp_houdini --from blender -o imported_wrong.vdb)
-set_tests_properties(cli.error.import_houdini_export_as_blender PROPERTIES DEPENDS cli.ok.export_houdini)
+set_tests_properties(cli.error.import_houdini_export_as_blender PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_houdini_export")

@@ -44,10 +44,10 @@ lighthouse_cli_ok(oracle_tiny
 lighthouse_cli_ok(compare_oracle_with_ground_truth
   STDOUT "1 envmap" "PSNR"
   ARGS compare --batch oracle_env syn_tiny/000000)
-set_tests_properties(cli.ok.compare_oracle_with_ground_truth PROPERTIES DEPENDS cli.ok.oracle_tiny)
-foreach(t cli.ok.oracle_tiny cli.ok.compare_oracle_with_ground_truth)
-  set_tests_properties(${t} PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_synth_tiny")
-endforeach()
+set_tests_properties(cli.ok.oracle_tiny PROPERTIES FIXTURES_SETUP lighthouse_oracle_tiny)
+set_tests_properties(cli.ok.oracle_tiny PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_synth_tiny")
+set_tests_properties(cli.ok.compare_oracle_with_ground_truth PROPERTIES
+  FIXTURES_REQUIRED "lighthouse_cli;lighthouse_synth_tiny;lighthouse_oracle_tiny")
 
 lighthouse_cli_error(oracle_not_a_directory
   EXPECT "'no_such_example' is not an example directory"

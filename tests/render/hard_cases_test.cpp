@@ -147,6 +147,16 @@ TEST(HardCases, TinyAndHugeSteps) {
     EXPECT_THROW((MarchOptions{100.0, 0.0, true}.validate()), InputError);
 }
 
+TEST(HardCases, MoreLevelsThanTheRendererSupportsAreRefused) {
+    std::vector<VolumeLevel> levels;
+    for (int k = 0; k <= RenderVolume::kMaxLevels; ++k)  // 33 nested levels, 0.9x each time
+        levels.push_back(test::makeLevel(std::pow(0.9, k), Vec3d(-std::pow(0.9, k)), openvdb::Coord(2),
+                                         [](const Vec3d&) { return MediumSample{1.f, openvdb::Vec3s(1.f)}; }));
+    EXPECT_THROW(RenderVolume(test::volumeOf(levels)), InputError);
+    levels.pop_back();  // 32 levels: accepted
+    EXPECT_NO_THROW(RenderVolume(test::volumeOf(levels)));
+}
+
 TEST(HardCases, SmallestAndOversizedEnvmaps) {
     const RenderVolume volume = cube(0.9f, openvdb::Vec3s(1.f));
     const ImageRGB tiny = renderEnvmap(volume, Vec3d(0.0), {2, 1, MarchOptions{}});
