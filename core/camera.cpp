@@ -27,6 +27,18 @@ Vec3d PinholeCamera::cameraToPixel(const Vec3d& cam) const {
     return Vec3d(fx * cam.x() / cam.z() + cx, fy * cam.y() / cam.z() + cy, cam.z());
 }
 
+PinholeCamera PinholeCamera::resized(int newWidth, int newHeight) const {
+    PinholeCamera c = *this;
+    const double sx = double(newWidth) / width, sy = double(newHeight) / height;
+    c.width = newWidth;
+    c.height = newHeight;
+    c.fx *= sx;
+    c.cx *= sx;
+    c.fy *= sy;
+    c.cy *= sy;
+    return c;
+}
+
 void PinholeCamera::validate(const std::string& what) const {
     auto fail = [&](const std::string& why) { throw InputError(what + ": " + why); };
     if (width <= 0 || height <= 0) fail("image size must be positive");

@@ -29,6 +29,11 @@ struct PinholeCamera {
     // Camera frame -> continuous pixel coordinates (x, y); z must be > 0.
     Vec3d cameraToPixel(const Vec3d& cam) const;
 
+    // The same camera for the image resized to width x height: intrinsics scaled per axis, so
+    // a world point lands at its old pixel coordinates times (width / old width, height / old
+    // height).
+    PinholeCamera resized(int newWidth, int newHeight) const;
+
     // Throws InputError naming `what` if the intrinsics or pose are impossible
     // (non-positive size or focal length, non-finite values, rotation not orthonormal with
     // determinant +1 within 1e-4).

@@ -16,17 +16,6 @@ constexpr double kMinDepth = 0.2, kMaxDepth = 100.0;  // scene units
 constexpr int kWindowRadius = 3;                       // 7x7 aggregation window
 constexpr int kMaxWidth = 192;                         // the sweep runs on a downsized pair
 
-PinholeCamera scaled(const PinholeCamera& c, int w, int h) {
-    PinholeCamera s = c;
-    s.fx *= double(w) / c.width;
-    s.cx *= double(w) / c.width;
-    s.fy *= double(h) / c.height;
-    s.cy *= double(h) / c.height;
-    s.width = w;
-    s.height = h;
-    return s;
-}
-
 float grey(const ImageRGB& im, int x, int y) {
     const float* p = im.at(x, y);
     return (p[0] + p[1] + p[2]) / 3.f;
@@ -77,7 +66,7 @@ DepthRange estimateDepthRange(const ImageRGB& refFull, const ImageRGB& srcFull, 
     const int ws = std::min(srcFull.width, kMaxWidth);
     const int hs = std::max(1, int(std::lround(double(srcFull.height) * ws / srcFull.width)));
     const ImageRGB ref = resizeImage(refFull, w, h), src = resizeImage(srcFull, ws, hs);
-    const PinholeCamera refCam = scaled(refCamFull, w, h), srcCam = scaled(srcCamFull, ws, hs);
+    const PinholeCamera refCam = refCamFull.resized(w, h), srcCam = srcCamFull.resized(ws, hs);
 
     // Texture: mean absolute gradient over the window; flat pixels cannot vote.
     std::vector<float> gradient(size_t(w) * h, 0.f);

@@ -6,7 +6,6 @@
 #include "net/training_data.h"
 #include "render/contact_sheet.h"
 #include "render/envmap.h"
-#include "render/envmap_layout.h"
 #include "render/image_io.h"
 #include "render/metrics.h"
 #include "render/render_volume.h"
@@ -16,7 +15,6 @@
 #include "synth/ray_tracer.h"
 #include "synth/scene_json.h"
 
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <filesystem>
@@ -37,16 +35,11 @@ constexpr float kGreyFill = 0.2140411f;
 // `background`.
 ImageRGB renderWithBackground(const RenderVolume& volume, const Vec3d& position, int width, int height,
                               const float background[3]) {
-    ImageRGB image(width, height);
-    const MarchOptions march;
-    tbb::parallel_for(0, height, [&](int row) {
-        for (int c = 0; c < width; ++c) {
-            const RayResult r = marchRay(volume, position, envmapPixelDirection(row, c, width, height), march);
-            float* p = image.at(c, row);
-            for (int ch = 0; ch < 3; ++ch) p[ch] = float(r.radiance[ch] + r.transmittance * background[ch]);
-        }
-    });
-    return image;
+    EnvmapOptions options;
+    options.width = width;
+    options.height = height;
+    std::copy(background, background + 3, options.background);
+    return renderEnvmap(volume, position, options);
 }
 
 void meanColour(const ImageRGB& image, float out[3]) {

@@ -65,8 +65,8 @@ PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const Pinhol
                           const PinholeCamera& srcCamera, double near, double far, const NetConfig& config,
                           const torch::Device& device) {
     PairInputs in;
-    in.ref = resizedCamera(refCamera, config.width, config.height);
-    in.src = resizedCamera(srcCamera, config.width, config.height);
+    in.ref = refCamera.resized(config.width, config.height);
+    in.src = srcCamera.resized(config.width, config.height);
     const auto refLinear = imageToTensor(resizeImage(ref, config.width, config.height));
     const auto srcLinear = imageToTensor(resizeImage(src, config.width, config.height));
     in.refLinear = refLinear.to(device);

@@ -45,16 +45,4 @@ torch::Tensor pixelRaysCamera(const PinholeCamera& camera) {
     return torch::stack({grids[1], grids[0], torch::ones_like(grids[0])}, -1);  // z = 1, not unit
 }
 
-PinholeCamera resizedCamera(const PinholeCamera& camera, int width, int height) {
-    PinholeCamera c = camera;
-    const double sx = double(width) / camera.width, sy = double(height) / camera.height;
-    c.width = width;
-    c.height = height;
-    c.fx *= sx;
-    c.cx *= sx;
-    c.fy *= sy;
-    c.cy *= sy;
-    return c;
-}
-
 }  // namespace lh::net

@@ -27,7 +27,5 @@ inline torch::Tensor toGridCoordinate(const torch::Tensor& pixels, double size) 
     return pixels * (2.0 / size) - 1.0;
 }
 
-// The same camera for an image resized to width x height (intrinsics scaled).
-PinholeCamera resizedCamera(const PinholeCamera& camera, int width, int height);
 
 }  // namespace lh::net

@@ -252,7 +252,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
         const PairInputs in = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
                                              *ex.cameras.far, config, device);
         const PipelineOutput out = s.net->run(in, stage >= 2);
-        const PinholeCamera tgt = resizedCamera(*ex.cameras.tgt, config.width, config.height);
+        const PinholeCamera tgt = ex.cameras.tgt->resized(config.width, config.height);
         const auto tgtImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
         const auto viewLoss = lossOf(renderMpiView(out.mpi, in.depths, in.ref, tgt), tgtImage);
         auto loss = viewLoss;

@@ -18,6 +18,9 @@ void EnvmapOptions::validate() const {
         throw ResourceError("envmap " + std::to_string(width) + "x" + std::to_string(height) +
                             " exceeds the " + std::to_string(kMaxEnvmapPixels) +
                             "-pixel memory bound");
+    for (float b : background)
+        if (!(std::isfinite(b) && b >= 0.f))
+            throw InputError("envmap background radiance must be finite and non-negative");
     march.validate();
 }
 
@@ -43,7 +46,8 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
                                   const Vec3d d(sinPhi * sinTheta[c], -cosPhi, sinPhi * cosTheta[c]);
                                   const RayResult ray = marchRay(volume, position, d, options.march);
                                   float* px = image.at(c, r);
-                                  for (int i = 0; i < 3; ++i) px[i] = float(ray.radiance[i]);
+                                  for (int i = 0; i < 3; ++i)
+                                      px[i] = float(ray.radiance[i] + ray.transmittance * options.background[i]);
                               }
                           }
                       });

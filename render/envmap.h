@@ -10,8 +10,13 @@ struct EnvmapOptions {
     int width = 240;   // W = 2 H
     int height = 120;
     MarchOptions march;
+    // Radiance behind the volume (linear RGB): each pixel adds transmittance x background.
+    // Black, the convention, by default; the evaluation's baselines fill what an MPI leaves
+    // unseen with grey or with the photo's mean colour.
+    float background[3] = {0.f, 0.f, 0.f};
 
-    // Throws InputError unless W = 2 H >= 2, ResourceError above kMaxEnvmapPixels.
+    // Throws InputError unless W = 2 H >= 2 and the background is finite and non-negative,
+    // ResourceError above kMaxEnvmapPixels.
     void validate() const;
 };
 

@@ -17,6 +17,21 @@ const char* kValid = R"({
   "envmaps": [{"position": [0.1, 0.2, 2.0], "file": "env_0.exr"}]
 })";
 
+TEST(Camera, ResizedCameraProjectsToScaledPixels) {
+    const CamerasFile c = parseCamerasJson(kValid, "test.json");
+    const PinholeCamera half = c.ref.resized(160, 60);  // x by 1/2, y by 1/4
+    EXPECT_EQ(half.width, 160);
+    EXPECT_EQ(half.height, 60);
+    const Vec3d world(0.4, -0.3, 2.5);
+    const Vec3d full = c.ref.cameraToPixel(c.ref.worldToCamera(world));
+    const Vec3d small = half.cameraToPixel(half.worldToCamera(world));
+    EXPECT_NEAR(small.x(), full.x() * 0.5, 1e-9);
+    EXPECT_NEAR(small.y(), full.y() * 0.25, 1e-9);
+    // The pose is unchanged: the centre pixel looks the same way.
+    const Vec3d a = c.ref.pixelDirection(160, 120), b = half.pixelDirection(80, 30);
+    EXPECT_NEAR((a - b).length(), 0.0, 1e-12);
+}
+
 TEST(Camera, ParsesConventionsExample) {
     CamerasFile c = parseCamerasJson(kValid, "test.json");
     EXPECT_EQ(c.ref.width, 320);

@@ -7,6 +7,8 @@
 #include "net/volume_render.h"
 #include "tests/net/net_test_scenes.h"
 
+#include "tests/support/temp_path.h"
+
 #include <gtest/gtest.h>
 
 #include "core/errors.h"
@@ -96,7 +98,7 @@ TEST(Model, FewStepsOnATinySceneLowerTheLoss) {
     LighthouseNet net(config);
     const PairInputs in = tinyPair(config);
     const PinholeCamera tgtFull = planeCamera(64, 32, Vec3d(-0.1, 0.05, 0.1));
-    const PinholeCamera tgt = resizedCamera(tgtFull, config.width, config.height);
+    const PinholeCamera tgt = tgtFull.resized(config.width, config.height);
     const auto tgtImage = imageToTensor(renderPlane(tgt, 2.0));
     const auto envTarget = torch::full({1, 3, 8, 16}, 0.25);
     torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(2e-3));
@@ -121,7 +123,7 @@ TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
     torch::manual_seed(3);
     LighthouseNet net(tinyConfig());
     net->eval();
-    const std::string path = (std::filesystem::temp_directory_path() / "lighthouse_model_test.pt").string();
+    const std::string path = test::uniqueTempPath("lighthouse_model_test.pt");
     saveModel(net, path);
     LighthouseNet loaded = loadModel(path, torch::Device(torch::kCPU));
     EXPECT_EQ(loaded->config.toJson(), tinyConfig().toJson());
@@ -134,7 +136,7 @@ TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
 }
 
 TEST(Model, NotAModelFileIsAClearError) {
-    const std::string path = (std::filesystem::temp_directory_path() / "lighthouse_not_a_model.pt").string();
+    const std::string path = test::uniqueTempPath("lighthouse_not_a_model.pt");
     { std::ofstream(path) << "hello"; }
     EXPECT_THROW(loadModel(path, torch::Device(torch::kCPU)), FileError);
     EXPECT_THROW(loadModel(path + ".missing", torch::Device(torch::kCPU)), FileError);
@@ -196,7 +198,7 @@ std::string writeVggArchive(const std::string& name, bool complete) {
         archive.register_buffer(stem + "_bias", torch::zeros({widths[c]}));
         in = widths[c];
     }
-    const std::string path = (std::filesystem::temp_directory_path() / name).string();
+    const std::string path = test::uniqueTempPath(name);
     archive.save(path);
     return path;
 }
@@ -218,7 +220,7 @@ TEST(VggLoss, IncompleteOrForeignFilesAreRefused) {
     const std::string partial = writeVggArchive("lighthouse_vgg_partial.pt", false);
     EXPECT_THROW(VggPerceptualLoss(partial, torch::Device(torch::kCPU)), FileError);
     std::filesystem::remove(partial);
-    const std::string text = (std::filesystem::temp_directory_path() / "lighthouse_vgg_text.pt").string();
+    const std::string text = test::uniqueTempPath("lighthouse_vgg_text.pt");
     { std::ofstream(text) << "not an archive"; }
     EXPECT_THROW(VggPerceptualLoss(text, torch::Device(torch::kCPU)), FileError);
     EXPECT_THROW(VggPerceptualLoss(text + ".missing", torch::Device(torch::kCPU)), FileError);

@@ -8,6 +8,8 @@
 #include "render/render_volume.h"
 #include "tests/net/net_test_scenes.h"
 
+#include "tests/support/temp_path.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -23,7 +25,7 @@ protected:
     static void SetUpTestSuite() {
         torch::manual_seed(5);
         LighthouseNet net(test::tinyConfig());
-        modelPath() = (std::filesystem::temp_directory_path() / "lighthouse_prediction_test.pt").string();
+        modelPath() = test::uniqueTempPath("lighthouse_prediction_test.pt");
         saveModel(net, modelPath());
     }
     static void TearDownTestSuite() { std::filesystem::remove(modelPath()); }

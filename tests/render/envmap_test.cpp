@@ -80,6 +80,23 @@ TEST(Envmap, FastSettingsAgreeWithReference) {
     }
 }
 
+TEST(Envmap, BackgroundShowsThroughWhatTheVolumeTransmits) {
+    // From the centre of a homogeneous cube [-1, 1]^3 (sigma 0.7, colour c), the ray towards +x
+    // crosses 1 unit: pixel = c (1 - T) + T b with T = exp(-0.7).
+    const openvdb::Vec3s colour(0.2f, 0.4f, 0.6f);
+    const RenderVolume volume(test::volumeOf({test::makeLevel(
+        0.05, Vec3d(-1), openvdb::Coord(40), [&](const Vec3d&) { return MediumSample{0.7f, colour}; })}));
+    EnvmapOptions options{W, H, MarchOptions{}};
+    const float background[3] = {1.f, 0.5f, 0.f};
+    std::copy(background, background + 3, options.background);
+    const ImageRGB env = renderEnvmap(volume, Vec3d(0), options);
+    const double t = std::exp(-0.7);
+    const float* px = env.at(3 * W / 4, H / 2);  // +x (the pixel centre is 0.75 deg off the axis)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[c], colour[c] * (1 - t) + t * background[c], 2e-3) << c;
+    options.background[1] = std::nanf("");
+    EXPECT_THROW(renderEnvmap(volume, Vec3d(0), options), InputError);
+}
+
 TEST(Envmap, SizeAndPositionAreChecked) {
     const RenderVolume volume(makeExampleVolume(1, 8));
     EXPECT_THROW(renderEnvmap(volume, Vec3d(0), {100, 100, MarchOptions{}}), InputError);
