@@ -94,17 +94,6 @@ constexpr GaussRule kGaussRules[4] = {
     {3, {0.11270166537925831, 0.5, 0.88729833462074169}, {5.0 / 18, 8.0 / 18, 5.0 / 18}},
 };
 
-// One lattice cell of a brick, read in place: trilinear lookups inside one cell share the
-// address arithmetic and the cache lines.
-struct CellCorners {
-    const float* p;  // lattice point (0, 0, 0) of the cell
-
-    CellCorners(const float* brick, const int cell[3])
-        : p(brick + cell[2] * RenderLevel::kLatticeZ + cell[1] * RenderLevel::kLatticeY + cell[0] * 4) {}
-    // Cell-local coordinates in [0, 1] (clamped against rounding at the faces).
-    RenderSample at(float fx, float fy, float fz) const { return RenderLevel::sampleCell(p, fx, fy, fz); }
-};
-
 // Axis of the smallest of three crossing distances, without branches (which the DDA loops
 // mispredict: the next axis is irregular along a ray).
 inline int nearestAxis(const double tNext[3]) {
@@ -165,11 +154,14 @@ bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const
         const int axis = nearestAxis(tNext);
         const double tb = std::min(tNext[axis], t1);
         if (tb > t && (mask[cell[2]] >> (cell[0] + n * cell[1]) & 1u)) {
-            const CellCorners corners(brick, cell);
+            // The cell's lattice point (0, 0, 0), read in place: lookups inside one cell share
+            // the address arithmetic and the cache lines.
+            const float* corner = brick + cell[2] * RenderLevel::kLatticeZ +
+                                  cell[1] * RenderLevel::kLatticeY + cell[0] * 4;
             const Vec3d base = ub - Vec3d(cell[0], cell[1], cell[2]);  // cell-local origin
             const auto sample = [&](double tt) {
-                return corners.at(float(base[0] + qd[0] * tt), float(base[1] + qd[1] * tt),
-                                  float(base[2] + qd[2] * tt));
+                return RenderLevel::sampleCell(corner, float(base[0] + qd[0] * tt),
+                                               float(base[1] + qd[1] * tt), float(base[2] + qd[2] * tt));
             };
             if (!integrateCellPiece(sample, t, tb - t, 0, o, r)) return false;
         }
@@ -221,12 +213,12 @@ bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, dou
                 if (o.cellNodes > 0) {
                     if (!marchCells(brick, level.cellMask(b), ub, qd, ray.inv, t, tExit, o, r)) return false;
                 } else {
-                const auto sample = [&](double tt) {
-                    return RenderLevel::sampleLattice(brick, float(ub[0] + qd[0] * tt),
-                                                      float(ub[1] + qd[1] * tt),
-                                                      float(ub[2] + qd[2] * tt));
-                };
-                if (!integrateSpan(sample, t, tExit, stepT, o, r)) return false;
+                    const auto sample = [&](double tt) {
+                        return RenderLevel::sampleLattice(brick, float(ub[0] + qd[0] * tt),
+                                                          float(ub[1] + qd[1] * tt),
+                                                          float(ub[2] + qd[2] * tt));
+                    };
+                    if (!integrateSpan(sample, t, tExit, stepT, o, r)) return false;
                 }
             }
         }
