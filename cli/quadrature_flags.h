@@ -11,9 +11,10 @@ namespace lh::cli {
 struct QuadratureFlags {
     double stepVoxels = MarchOptions{}.stepVoxels;
     int gaussNodes = MarchOptions{}.cellNodes;
-    double maxOpticalDepth = MarchOptions{}.maxStepOpticalDepth;
+    double refineBound = 0.0;  // --max-optical-depth; MarchOptions' default when not given
     const CLI::Option* step = nullptr;
     const CLI::Option* nodes = nullptr;
+    const CLI::Option* bound = nullptr;
 
     // --step alone selects fixed steps; --step with --gauss-nodes above 0 is refused
     // (InputError), since cell quadrature has no step.

@@ -15,6 +15,9 @@ void MarchOptions::validate() const {
     if (!(maxStepOpticalDepth > 0.0))
         throw InputError("maximum optical depth per step must be positive, got " +
                          std::to_string(maxStepOpticalDepth));
+    if (!(cellRefineBound > 0.0))
+        throw InputError("refinement bound of the cell quadrature must be positive, got " +
+                         std::to_string(cellRefineBound));
     if (cellNodes < 0 || cellNodes > 3)
         throw InputError("Gauss nodes per lattice cell must be 0 (fixed steps) or 1-3, got " +
                          std::to_string(cellNodes));
@@ -102,26 +105,42 @@ inline int nearestAxis(const double tNext[3]) {
     return tNext[2] < t01 ? 2 : a01;
 }
 
+// How a cell piece is integrated: the options, and 1 / RenderVolume::typicalRadiance (0 for
+// a black scene, where nothing needs refining).
+struct CellQuadrature {
+    const MarchOptions& options;
+    double perTypicalRadiance;
+};
+
 // Integrates the part [ta, tb] of the ray inside one lattice cell with the Gauss rule of
 // o.cellNodes (ray_marcher.h); `sample(t)` is the trilinear field of the cell. The nodes give
-// the piece's optical depth exactly (sigma is cubic in t). An optically thick piece is
-// halved until its parts have bounded optical depth: where a ray meets a surface, the parts
+// the piece's optical depth exactly (sigma is cubic in t). A piece whose light may be
+// misplaced by more than the bound is halved: where a ray meets a bright surface, the parts
 // become short exactly where the density is, and stay exact in optical depth.
 template <class Sampler>
 bool integrateCellPiece(const Sampler& sample, double ta, double h, int depth,
-                        const MarchOptions& o, RayResult& r) {
+                        const CellQuadrature& cq, RayResult& r) {
+    const MarchOptions& o = cq.options;
     const GaussRule& rule = kGaussRules[o.cellNodes];
     RenderSample atNode[3];
-    double tau = 0.0;  // optical depth of the piece
+    double tau = 0.0;         // optical depth of the piece
+    double brightness = 0.0;  // brightest colour channel at the nodes (emission / sigma)
     for (int q = 0; q < rule.count; ++q) {
         atNode[q] = sample(ta + h * rule.node[q]);
-        tau += double(atNode[q].sigma) * rule.weight[q] * h;
+        const RenderSample& s = atNode[q];
+        tau += double(s.sigma) * rule.weight[q] * h;
+        if (s.sigma > 0.f)
+            brightness = std::max(brightness, double(std::max({s.emission[0], s.emission[1], s.emission[2]})) / s.sigma);
     }
+    // The sub-segments misplace light in proportion to the optical depth they see (tau T) and
+    // to how bright it is: measured in typical radiances, the same bound holds the error of
+    // an envmap relative to its mean radiance, and dim walls are not refined for nothing.
     // Below kSubdivideMinT what follows cannot matter: do not pay for halving there.
-    if (tau * r.transmittance > o.maxStepOpticalDepth * rule.count && depth < kMaxHalvings &&
+    const double misplaced = tau * r.transmittance * brightness * cq.perTypicalRadiance;
+    if (misplaced > o.cellRefineBound * rule.count && depth < kMaxHalvings &&
         r.transmittance >= kSubdivideMinT)
-        return integrateCellPiece(sample, ta, 0.5 * h, depth + 1, o, r) &&
-               integrateCellPiece(sample, ta + 0.5 * h, 0.5 * h, depth + 1, o, r);
+        return integrateCellPiece(sample, ta, 0.5 * h, depth + 1, cq, r) &&
+               integrateCellPiece(sample, ta + 0.5 * h, 0.5 * h, depth + 1, cq, r);
     double start = ta;
     for (int q = 0; q < rule.count; ++q) {
         const double length = h * rule.weight[q];
@@ -135,7 +154,7 @@ bool integrateCellPiece(const Sampler& sample, double ta, double h, int depth,
 // Walks the lattice cells of one brick crossed by [t0, t1] (a DDA at cell resolution) and
 // integrates the occupied ones. `ub` is the ray origin in the brick's lattice coordinates.
 bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const Vec3d& qd,
-                const Vec3d& inv, double t0, double t1, const MarchOptions& o, RayResult& r) {
+                const Vec3d& inv, double t0, double t1, const CellQuadrature& cq, RayResult& r) {
     constexpr int n = RenderLevel::kBrick;
     int cell[3], step[3];
     double tNext[3], tDelta[3];
@@ -163,7 +182,7 @@ bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const
                 return RenderLevel::sampleCell(corner, float(base[0] + qd[0] * tt),
                                                float(base[1] + qd[1] * tt), float(base[2] + qd[2] * tt));
             };
-            if (!integrateCellPiece(sample, t, tb - t, 0, o, r)) return false;
+            if (!integrateCellPiece(sample, t, tb - t, 0, cq, r)) return false;
         }
         t = std::max(t, tb);
         cell[axis] += step[axis];
@@ -176,7 +195,8 @@ bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const
 // Walks the 8^3 bricks of `level` crossed by [t0, t1] (Amanatides-Woo DDA) and integrates
 // only the occupied ones, sampling each brick's lattice directly.
 bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, double t1,
-                   double stepT, const MarchOptions& o, RayResult& r) {
+                   double stepT, const CellQuadrature& cq, RayResult& r) {
+    const MarchOptions& o = cq.options;
     constexpr double kBrick = RenderLevel::kBrick;
     const Vec3d& qd = ray.qd;
     const Vec3d u0 = ray.q0 - level.latticeOrigin.asVec3d();  // lattice coordinates of the origin
@@ -211,7 +231,7 @@ bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, dou
                 // Ray in this brick's own lattice coordinates.
                 const Vec3d ub = u0 - Vec3d(cell[0], cell[1], cell[2]) * kBrick;
                 if (o.cellNodes > 0) {
-                    if (!marchCells(brick, level.cellMask(b), ub, qd, ray.inv, t, tExit, o, r)) return false;
+                    if (!marchCells(brick, level.cellMask(b), ub, qd, ray.inv, t, tExit, cq, r)) return false;
                 } else {
                     const auto sample = [&](double tt) {
                         return RenderLevel::sampleLattice(brick, float(ub[0] + qd[0] * tt),
@@ -238,6 +258,8 @@ RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d&
     Piece pieces[RenderVolume::kMaxPieces];
     LevelRay rays[RenderVolume::kMaxLevels];
     const int count = volume.partitionRay(origin, dir, pieces, rays);
+    const double typical = volume.typicalRadiance();
+    const CellQuadrature cq{options, typical > 0.0 ? 1.0 / typical : 0.0};
     for (int p = 0; p < count; ++p) {
         const RenderLevel& level = volume.levels[pieces[p].level];
         const LevelRay& ray = rays[pieces[p].level];
@@ -246,7 +268,7 @@ RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d&
         const auto sample = [&](double t) { return level.sample(ray.q0 + ray.qd * t); };
         const bool keepGoing =
             options.skipEmptySpace || options.cellNodes > 0
-                ? marchSkipping(level, ray, pieces[p].t0, pieces[p].t1, stepT, options, result)
+                ? marchSkipping(level, ray, pieces[p].t0, pieces[p].t1, stepT, cq, result)
                 : integrateSpan(sample, pieces[p].t0, pieces[p].t1, stepT, options, result);
         if (!keepGoing) break;
     }

@@ -209,6 +209,33 @@ bool RenderLevel::brickOccupied(int bx, int by, int bz) const {
     return brickIndex(bx, by, bz) >= 0;
 }
 
+namespace {
+
+// RenderVolume::typicalRadiance over the prepared lattices, from at most ~1M points (strided).
+double typicalSurfaceRadiance(const std::vector<RenderLevel>& levels) {
+    std::size_t points = 0;
+    for (const RenderLevel& level : levels) points += level.brickData.size() / 4;
+    const std::size_t stride = std::max<std::size_t>(1, points >> 20);
+    std::vector<float> brightness;
+    std::size_t index = 0;
+    for (const RenderLevel& level : levels)
+        for (std::size_t p = 0; p < level.brickData.size(); p += 4, ++index) {
+            const float* v = &level.brickData[p];  // sigma, emission rgb
+            if (index % stride != 0 || !(v[0] > 0.f)) continue;
+            const float b = std::max({v[1], v[2], v[3]}) / v[0];
+            if (std::isfinite(b)) brightness.push_back(b);
+        }
+    if (brightness.empty()) return 0.0;
+    const auto middle = brightness.begin() + std::ptrdiff_t(brightness.size() / 2);
+    std::nth_element(brightness.begin(), middle, brightness.end());
+    if (*middle > 0.f) return *middle;
+    double sum = 0.0;
+    for (float b : brightness) sum += b;
+    return sum / double(brightness.size());
+}
+
+}  // namespace
+
 RenderVolume::RenderVolume(const LightingVolume& volume) {
     volume.validate();
     if (volume.levels.size() > std::size_t(kMaxLevels))
@@ -224,6 +251,7 @@ RenderVolume::RenderVolume(const LightingVolume& volume) {
     }
     nested_ = true;
     for (std::size_t k = 1; k < levels.size(); ++k) nested_ = nested_ && boxInside(levels[k], levels[k - 1]);
+    typicalRadiance_ = typicalSurfaceRadiance(levels);
 }
 
 int RenderVolume::partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces,

@@ -140,8 +140,16 @@ public:
     std::size_t storedBricks() const;
     std::size_t memoryBytes() const;
 
+    // The radiance a surface of this scene typically has: the median, over lattice points with
+    // density, of the brightest channel of their colour (emission / sigma); the mean if that
+    // median is 0, and 0 only if every colour is black. The cell quadrature measures a piece's
+    // possible error in units of it (ray_marcher.h), as the error of an envmap is judged
+    // relative to its mean radiance.
+    double typicalRadiance() const { return typicalRadiance_; }
+
 private:
     bool nested_ = false;  // every level's box inside the next coarser level's box
+    double typicalRadiance_ = 0.0;
 };
 
 struct Piece {

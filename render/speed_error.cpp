@@ -107,12 +107,12 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
                     return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{step, threshold, true, tauMax, 0}});
                 });
             }
-    for (double tauMax : {0.1, 0.25, 0.5, 1.0})
+    for (double tauMax : {0.25, 0.5, 1.0, 2.0, 4.0})
         for (int nodes : {1, 2, 3}) {
             std::ostringstream s;
-            s << nodes << " Gauss node" << (nodes > 1 ? "s" : "") << "/cell, tau<" << tauMax;
+            s << nodes << " Gauss node" << (nodes > 1 ? "s" : "") << "/cell, bound " << tauMax;
             MarchOptions march;
-            march.maxStepOpticalDepth = tauMax;
+            march.cellRefineBound = tauMax;
             march.cellNodes = nodes;
             measure("ours-cells", s.str(), [&](const Vec3d& p) { return renderEnvmap(prepared, p, {o.width, o.height, march}); });
         }

@@ -108,6 +108,48 @@ TEST(CellQuadrature, CloserToTheReferenceThanFixedStepsOnTheExampleRoom) {
     EXPECT_LT(errorCells, 0.5 * errorSteps) << "cells " << errorCells << " steps " << errorSteps;
 }
 
+double meanOf(const ImageRGB& image) {
+    double sum = 0;
+    for (float v : image.pixels) sum += v;
+    return sum / image.pixels.size();
+}
+
+TEST(CellQuadrature, DefaultsKeepTheEnvmapErrorBelowAThousandthOfTheMeanRadiance) {
+    // The halving bound is weighed by brightness in units of the scene's typical radiance, so
+    // that the error of an envmap stays small relative to its mean radiance: the example room's
+    // lamps and window are many times brighter than its walls. The measure: RMSE over
+    // a set of envmaps relative to their mean radiance, on a 5 x 64^3 volume.
+    const RenderVolume volume(makeExampleVolume(5, 64));
+    double squared = 0, mean = 0;
+    for (const Vec3d& at : {Vec3d(0, 0, 2), Vec3d(0.2, 0.1, 0.45), Vec3d(-1, 0.5, 4)}) {
+        const ImageRGB reference = renderEnvmap(volume, at, {64, 32, MarchOptions::reference()});
+        squared += std::pow(linearRmse(renderEnvmap(volume, at, {64, 32, MarchOptions{}}), reference), 2);
+        mean += meanOf(reference);
+    }
+    EXPECT_LT(std::sqrt(squared / 3) / (mean / 3), 1e-3);
+}
+
+TEST(RenderVolume, TypicalRadianceIsTheMedianSurfaceColour) {
+    // Walls of colour (0.5, 0.2, 0.1) and a small lamp of 100: the lamp does not move the median.
+    const auto scene = [](const openvdb::Vec3s& wallColour) {
+        return test::volumeOf({test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20), [=](const Vec3d& p) {
+            if (p.x() > 0.5 && std::abs(p.y()) < 0.15 && std::abs(p.z()) < 0.15) return MediumSample{50.f, openvdb::Vec3s(100.f)};
+            if (p.x() > 0.5 || p.y() < -0.5) return MediumSample{50.f, wallColour};
+            return MediumSample{0.f, openvdb::Vec3s(0.f)};
+        })});
+    };
+    EXPECT_NEAR(RenderVolume(scene(openvdb::Vec3s(0.5f, 0.2f, 0.1f))).typicalRadiance(), 0.5, 1e-6);
+    // Black walls: the median is 0, and the mean keeps the lamp refined.
+    const double blackWalls = RenderVolume(scene(openvdb::Vec3s(0.f))).typicalRadiance();
+    EXPECT_GT(blackWalls, 0.0);
+    EXPECT_LT(blackWalls, 100.0);
+    // No density anywhere: nothing to refine.
+    EXPECT_EQ(RenderVolume(test::volumeOf({test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20), [](const Vec3d&) {
+                  return MediumSample{0.f, openvdb::Vec3s(1.f)};
+              })})).typicalRadiance(),
+              0.0);
+}
+
 TEST(RayPartition, NestedFastPathMatchesTheGeneralSubtraction) {
     const RenderVolume volume(makeExampleVolume(5, 32));
     ASSERT_TRUE(volume.nestedLevels());
