@@ -34,16 +34,16 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
     // envmapPixelDirection factored: one sincos per column and per row, not per pixel.
     std::vector<double> sinTheta(options.width), cosTheta(options.width);
     for (int c = 0; c < options.width; ++c) {
-        const double theta = 2.0 * M_PI * (c + 0.5) / options.width - M_PI;
+        const double theta = envmapAzimuth(c + 0.5, options.width);
         sinTheta[c] = std::sin(theta), cosTheta[c] = std::cos(theta);
     }
     tbb::parallel_for(tbb::blocked_range<int>(0, options.height),
                       [&](const tbb::blocked_range<int>& rows) {
                           for (int r = rows.begin(); r != rows.end(); ++r) {
-                              const double phi = M_PI * (r + 0.5) / options.height;
+                              const double phi = envmapPolarAngle(r + 0.5, options.height);
                               const double sinPhi = std::sin(phi), cosPhi = std::cos(phi);
                               for (int c = 0; c < options.width; ++c) {
-                                  const Vec3d d(sinPhi * sinTheta[c], -cosPhi, sinPhi * cosTheta[c]);
+                                  const Vec3d d = envmapDirectionFromAngles(sinPhi, cosPhi, sinTheta[c], cosTheta[c]);
                                   const RayResult ray = marchRay(volume, position, d, options.march);
                                   float* px = image.at(c, r);
                                   for (int i = 0; i < 3; ++i)

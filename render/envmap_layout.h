@@ -12,12 +12,21 @@
 
 namespace lh {
 
+// Polar angle phi of a continuous row, azimuth theta of a continuous column (radians).
+inline double envmapPolarAngle(double row, int height) { return M_PI * row / height; }
+inline double envmapAzimuth(double column, int width) { return 2.0 * M_PI * column / width - M_PI; }
+
+// The direction from the sines and cosines of phi and theta: renderers that tabulate them per
+// row and per column (one sincos each, not one per pixel) share this one formula.
+inline Vec3d envmapDirectionFromAngles(double sinPhi, double cosPhi, double sinTheta, double cosTheta) {
+    return Vec3d(sinPhi * sinTheta, -cosPhi, sinPhi * cosTheta);
+}
+
 // Direction (unit, world frame) through continuous pixel coordinates (row, column); pixel
 // centres are at integer + 0.5.
 inline Vec3d envmapDirection(double row, double column, int width, int height) {
-    const double phi = M_PI * row / height;
-    const double theta = 2.0 * M_PI * column / width - M_PI;
-    return Vec3d(std::sin(phi) * std::sin(theta), -std::cos(phi), std::sin(phi) * std::cos(theta));
+    const double phi = envmapPolarAngle(row, height), theta = envmapAzimuth(column, width);
+    return envmapDirectionFromAngles(std::sin(phi), std::cos(phi), std::sin(theta), std::cos(theta));
 }
 
 inline Vec3d envmapPixelDirection(int row, int column, int width, int height) {

@@ -97,19 +97,48 @@ constexpr GaussRule kGaussRules[4] = {
     {3, {0.11270166537925831, 0.5, 0.88729833462074169}, {5.0 / 18, 8.0 / 18, 5.0 / 18}},
 };
 
-// Axis of the smallest of three crossing distances, without branches (which the DDA loops
-// mispredict: the next axis is irregular along a ray).
-inline int nearestAxis(const double tNext[3]) {
-    const int a01 = tNext[1] < tNext[0];
-    const double t01 = a01 ? tNext[1] : tNext[0];
-    return tNext[2] < t01 ? 2 : a01;
-}
-
 // How a cell piece is integrated: the options, and 1 / RenderVolume::typicalRadiance (0 for
 // a black scene, where nothing needs refining).
 struct CellQuadrature {
     const MarchOptions& options;
     double perTypicalRadiance;
+};
+
+// Amanatides-Woo walk over a grid of `count` cells per axis, each `size` units wide (cell i
+// spans [i size, (i + 1) size)), along u(t) = u0 + t qd; `inv` holds 1 / qd (infinite where a
+// component is 0). One walk serves the bricks of a level (size 8) and the lattice cells of a
+// brick (size 1).
+struct GridWalk {
+    int cell[3], step[3];
+    double tNext[3];   // t at which the walk crosses the next plane along each axis
+    double tDelta[3];  // t between two planes along each axis
+
+    GridWalk(const Vec3d& u0, const Vec3d& qd, const Vec3d& inv, double t0, double size, const int count[3]) {
+        for (int a = 0; a < 3; ++a) {
+            cell[a] = std::clamp(int(std::floor((u0[a] + qd[a] * t0) * (1.0 / size))), 0, count[a] - 1);
+            if (qd[a] > 0) {
+                step[a] = 1, tNext[a] = ((cell[a] + 1) * size - u0[a]) * inv[a], tDelta[a] = size * inv[a];
+            } else if (qd[a] < 0) {
+                step[a] = -1, tNext[a] = (cell[a] * size - u0[a]) * inv[a], tDelta[a] = -size * inv[a];
+            } else {
+                step[a] = 0, tNext[a] = tDelta[a] = std::numeric_limits<double>::infinity();
+            }
+        }
+    }
+    // Axis of the nearest plane, without branches (which the walks mispredict: the next axis
+    // is irregular along a ray).
+    int nearestAxis() const {
+        const int a01 = tNext[1] < tNext[0];
+        const double t01 = a01 ? tNext[1] : tNext[0];
+        return tNext[2] < t01 ? 2 : a01;
+    }
+    // Crosses the plane along `axis`; false once the walk has left the grid (`count` cells
+    // along that axis).
+    bool advance(int axis, int count) {
+        cell[axis] += step[axis];
+        tNext[axis] += tDelta[axis];
+        return unsigned(cell[axis]) < unsigned(count);
+    }
 };
 
 // Integrates the part [ta, tb] of the ray inside one lattice cell with the Gauss rule of
@@ -156,22 +185,13 @@ bool integrateCellPiece(const Sampler& sample, double ta, double h, int depth,
 bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const Vec3d& qd,
                 const Vec3d& inv, double t0, double t1, const CellQuadrature& cq, RayResult& r) {
     constexpr int n = RenderLevel::kBrick;
-    int cell[3], step[3];
-    double tNext[3], tDelta[3];
-    for (int a = 0; a < 3; ++a) {
-        cell[a] = std::clamp(int(std::floor(ub[a] + qd[a] * t0)), 0, n - 1);
-        if (qd[a] > 0) {
-            step[a] = 1, tNext[a] = (cell[a] + 1 - ub[a]) * inv[a], tDelta[a] = inv[a];
-        } else if (qd[a] < 0) {
-            step[a] = -1, tNext[a] = (cell[a] - ub[a]) * inv[a], tDelta[a] = -inv[a];
-        } else {
-            step[a] = 0, tNext[a] = tDelta[a] = std::numeric_limits<double>::infinity();
-        }
-    }
+    constexpr int kCells[3] = {n, n, n};
+    GridWalk walk(ub, qd, inv, t0, 1.0, kCells);
+    const int* cell = walk.cell;
     double t = t0;
     while (t < t1) {
-        const int axis = nearestAxis(tNext);
-        const double tb = std::min(tNext[axis], t1);
+        const int axis = walk.nearestAxis();
+        const double tb = std::min(walk.tNext[axis], t1);
         if (tb > t && (mask[cell[2]] >> (cell[0] + n * cell[1]) & 1u)) {
             // The cell's lattice point (0, 0, 0), read in place: lookups inside one cell share
             // the address arithmetic and the cache lines.
@@ -185,9 +205,7 @@ bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const
             if (!integrateCellPiece(sample, t, tb - t, 0, cq, r)) return false;
         }
         t = std::max(t, tb);
-        cell[axis] += step[axis];
-        tNext[axis] += tDelta[axis];
-        if (cell[axis] < 0 || cell[axis] >= n) break;
+        if (!walk.advance(axis, n)) break;
     }
     return true;
 }
@@ -200,30 +218,13 @@ bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, dou
     constexpr double kBrick = RenderLevel::kBrick;
     const Vec3d& qd = ray.qd;
     const Vec3d u0 = ray.q0 - level.latticeOrigin.asVec3d();  // lattice coordinates of the origin
-    // Brick-space ray: b(t) = (u0 + t qd) / 8.
-    const Vec3d b0 = u0 / kBrick;
-    const Vec3d start = b0 + qd * (t0 / kBrick);
-    int cell[3], step[3];
-    double tNext[3], tDelta[3];
-    for (int a = 0; a < 3; ++a) {
-        cell[a] = std::clamp(int(std::floor(start[a])), 0, level.brickCount[a] - 1);
-        if (qd[a] > 0) {
-            step[a] = 1;
-            tNext[a] = ((cell[a] + 1) * kBrick - u0[a]) * ray.inv[a];
-            tDelta[a] = kBrick * ray.inv[a];
-        } else if (qd[a] < 0) {
-            step[a] = -1;
-            tNext[a] = (cell[a] * kBrick - u0[a]) * ray.inv[a];
-            tDelta[a] = -kBrick * ray.inv[a];
-        } else {
-            step[a] = 0;
-            tNext[a] = tDelta[a] = std::numeric_limits<double>::infinity();
-        }
-    }
+    const int* bricks = level.brickCount.data();
+    GridWalk walk(u0, qd, ray.inv, t0, kBrick, bricks);
+    const int* cell = walk.cell;
     double t = t0;
     while (t < t1) {
-        const int axis = nearestAxis(tNext);
-        const double tExit = std::min(tNext[axis], t1);
+        const int axis = walk.nearestAxis();
+        const double tExit = std::min(walk.tNext[axis], t1);
         if (tExit > t) {
             const int b = level.brickIndex(cell[0], cell[1], cell[2]);
             if (b >= 0) {
@@ -243,9 +244,7 @@ bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, dou
             }
         }
         t = std::max(t, tExit);
-        cell[axis] += step[axis];
-        tNext[axis] += tDelta[axis];
-        if (cell[axis] < 0 || cell[axis] >= level.brickCount[axis]) break;
+        if (!walk.advance(axis, bricks[axis])) break;
     }
     return true;
 }
