@@ -37,6 +37,7 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
         const double theta = envmapAzimuth(c + 0.5, options.width);
         sinTheta[c] = std::sin(theta), cosTheta[c] = std::cos(theta);
     }
+    const RenderVolume::RayOrigin origin = volume.rayOrigin(position);
     tbb::parallel_for(tbb::blocked_range<int>(0, options.height),
                       [&](const tbb::blocked_range<int>& rows) {
                           for (int r = rows.begin(); r != rows.end(); ++r) {
@@ -44,7 +45,7 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
                               const double sinPhi = std::sin(phi), cosPhi = std::cos(phi);
                               for (int c = 0; c < options.width; ++c) {
                                   const Vec3d d = envmapDirectionFromAngles(sinPhi, cosPhi, sinTheta[c], cosTheta[c]);
-                                  const RayResult ray = marchRay(volume, position, d, options.march);
+                                  const RayResult ray = marchRay(volume, origin, d, options.march);
                                   float* px = image.at(c, r);
                                   for (int i = 0; i < 3; ++i)
                                       px[i] = float(ray.radiance[i] + ray.transmittance * options.background[i]);

@@ -253,6 +253,11 @@ bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, dou
 
 RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d& dir,
                    const MarchOptions& options) {
+    return marchRay(volume, volume.rayOrigin(origin), dir, options);
+}
+
+RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin, const Vec3d& dir,
+                   const MarchOptions& options) {
     RayResult result;
     Piece pieces[RenderVolume::kMaxPieces];
     LevelRay rays[RenderVolume::kMaxLevels];

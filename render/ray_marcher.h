@@ -71,5 +71,8 @@ constexpr int kMaxSubsteps = 64;  // sub-steps of one optically thick step
 
 RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d& dir,
                    const MarchOptions& options);
+// The same for many rays from one origin (RenderVolume::rayOrigin, computed once).
+RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin, const Vec3d& dir,
+                   const MarchOptions& options);
 
 }  // namespace lh

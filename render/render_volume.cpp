@@ -76,6 +76,8 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
                        xf.indexToWorld(Vec3d(0, 0, 1)) - origin);
     out.indexToWorld = toWorld;
     out.worldToIndex = toWorld.inverse();
+    const Mat3d& m = out.worldToIndex;
+    out.axisAligned = m(0, 1) == 0 && m(0, 2) == 0 && m(1, 0) == 0 && m(1, 2) == 0 && m(2, 0) == 0 && m(2, 1) == 0;
     out.indexOffset = -(out.worldToIndex * origin);
     out.voxelVolume = std::abs(toWorld.det());
 
@@ -254,7 +256,14 @@ RenderVolume::RenderVolume(const LightingVolume& volume) {
     typicalRadiance_ = typicalSurfaceRadiance(levels);
 }
 
-int RenderVolume::partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+RenderVolume::RayOrigin RenderVolume::rayOrigin(const Vec3d& world) const {
+    RayOrigin origin;
+    origin.world = world;
+    for (std::size_t k = 0; k < levels.size(); ++k) origin.index[k] = levels[k].toIndex(world);
+    return origin;
+}
+
+int RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
                                LevelRay* levelRays) const {
     if (!nested_) return partitionRayGeneral(origin, dir, pieces, levelRays);
     // Nested boxes: the ray's interval in a finer level lies inside its interval in every
@@ -265,7 +274,7 @@ int RenderVolume::partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pie
     int hit = 0;  // levels 0 .. hit-1 are hit (a level missed means every finer one is too)
     for (; hit < n; ++hit) {
         const RenderLevel& level = levels[hit];
-        const LevelRay ray = level.ray(origin, dir);
+        const LevelRay ray = level.rayFromIndexOrigin(origin.index[hit], dir);
         if (levelRays) levelRays[hit] = ray;
         if (!intersectBox(ray, level.domainLo, level.domainHi, lo[hit], hi[hit])) break;
     }
@@ -278,14 +287,14 @@ int RenderVolume::partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pie
     return count;
 }
 
-int RenderVolume::partitionRayGeneral(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+int RenderVolume::partitionRayGeneral(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
                                       LevelRay* levelRays) const {
     int count = 0;
     // Finest first: each level claims the parts of its interval no finer level has claimed.
     for (int k = int(levels.size()) - 1; k >= 0; --k) {
         const RenderLevel& level = levels[k];
         double a, b;
-        const LevelRay ray = level.ray(origin, dir);
+        const LevelRay ray = level.rayFromIndexOrigin(origin.index[k], dir);
         if (levelRays) levelRays[k] = ray;
         if (!intersectBox(ray, level.domainLo, level.domainHi, a, b))
             continue;

@@ -46,8 +46,13 @@ public:
     // World -> continuous index coordinates (voxel centres at integers).
     Vec3d toIndex(const Vec3d& world) const { return worldToIndex * world + indexOffset; }
     Vec3d directionToIndex(const Vec3d& dir) const { return worldToIndex * dir; }
-    LevelRay ray(const Vec3d& origin, const Vec3d& dir) const {
-        const Vec3d q0 = toIndex(origin), qd = directionToIndex(dir);
+    LevelRay ray(const Vec3d& origin, const Vec3d& dir) const { return rayFromIndexOrigin(toIndex(origin), dir); }
+    // The same with the origin already in index coordinates (RenderVolume::RayOrigin): only the
+    // direction is mapped, with three products when the level's axes are the world's.
+    LevelRay rayFromIndexOrigin(const Vec3d& q0, const Vec3d& dir) const {
+        const Vec3d qd = axisAligned ? Vec3d(worldToIndex(0, 0) * dir.x(), worldToIndex(1, 1) * dir.y(),
+                                             worldToIndex(2, 2) * dir.z())
+                                     : directionToIndex(dir);
         return {q0, qd, Vec3d(1.0 / qd.x(), 1.0 / qd.y(), 1.0 / qd.z())};
     }
 
@@ -97,6 +102,7 @@ public:
     }
 
     Mat3d worldToIndex;  // linear part of the world -> index map
+    bool axisAligned = false;  // worldToIndex is diagonal (the usual layout)
     Vec3d indexOffset;   // translation of the world -> index map
     Mat3d indexToWorld;  // inverse linear part (for halo positions)
     Vec3d domainLo, domainHi;  // continuous index bounds: outer faces of the domain's voxels
@@ -121,14 +127,29 @@ public:
     // With `levelRays` (kMaxLevels entries), also the ray in every level a piece refers to.
     static constexpr int kMaxPieces = 64;
     static constexpr int kMaxLevels = 32;  // the constructor refuses more (InputError)
-    int partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+    // What every ray from one origin shares (all the rays of an envmap): the origin in each
+    // level's index coordinates, computed once instead of once per ray.
+    struct RayOrigin {
+        Vec3d world;
+        std::array<Vec3d, kMaxLevels> index;
+    };
+    RayOrigin rayOrigin(const Vec3d& world) const;
+    int partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
                      LevelRay* levelRays = nullptr) const;
+    int partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+                     LevelRay* levelRays = nullptr) const {
+        return partitionRay(rayOrigin(origin), dir, pieces, levelRays);
+    }
     // The same for any arrangement of levels (overlapping, disjoint): subtracts the intervals
     // finer levels claimed. partitionRay uses it unless every level lies inside the next
     // coarser one (the usual multiscale layout), where each level's interval minus the next
     // finer level's interval is at most two pieces and no subtraction or sort is needed.
-    int partitionRayGeneral(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+    int partitionRayGeneral(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
                             LevelRay* levelRays = nullptr) const;
+    int partitionRayGeneral(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
+                            LevelRay* levelRays = nullptr) const {
+        return partitionRayGeneral(rayOrigin(origin), dir, pieces, levelRays);
+    }
     bool nestedLevels() const { return nested_; }
 
     // Field at a world point under finest-wins (for tests and reference checks).

@@ -153,6 +153,7 @@ TEST(RenderVolume, TypicalRadianceIsTheMedianSurfaceColour) {
 TEST(RayPartition, NestedFastPathMatchesTheGeneralSubtraction) {
     const RenderVolume volume(makeExampleVolume(5, 32));
     ASSERT_TRUE(volume.nestedLevels());
+    for (const RenderLevel& level : volume.levels) EXPECT_TRUE(level.axisAligned);
     Random rng(7);
     Piece fast[RenderVolume::kMaxPieces], general[RenderVolume::kMaxPieces];
     for (int i = 0; i < 2000; ++i) {
@@ -162,6 +163,9 @@ TEST(RayPartition, NestedFastPathMatchesTheGeneralSubtraction) {
         const Vec3d dir = Vec3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).unit();
         const int n = volume.partitionRay(origin, dir, fast);
         ASSERT_EQ(n, volume.partitionRayGeneral(origin, dir, general)) << i;
+        // The three-product direction map of axis-aligned levels is the full matrix's.
+        const RenderLevel& finest = volume.levels.back();
+        EXPECT_LT((finest.rayFromIndexOrigin(finest.toIndex(origin), dir).qd - finest.worldToIndex * dir).length(), 1e-12);
         for (int p = 0; p < n; ++p) {
             EXPECT_EQ(fast[p].level, general[p].level);
             EXPECT_NEAR(fast[p].t0, general[p].t0, 1e-9);

@@ -64,6 +64,13 @@ TEST(GridAware, RotatedAnisotropicTransformIsFollowed) {
     EXPECT_NEAR(axisZ.length(), 0.02, 1e-12);
     EXPECT_LT(std::abs(axisX.y()), 1e-12);
     EXPECT_GT(std::abs(axisX.z()), 0.02);  // really rotated
+    // A rotated level maps directions with its full matrix, also from a shared origin.
+    const RenderLevel& prepared = volume.levels[0];
+    EXPECT_FALSE(prepared.axisAligned);
+    const Vec3d dir = Vec3d(0.3, -0.5, 0.8).unit();
+    const LevelRay shared = prepared.rayFromIndexOrigin(volume.rayOrigin(centre).index[0], dir);
+    EXPECT_LT((shared.q0 - prepared.toIndex(centre)).length(), 1e-12);
+    EXPECT_LT((shared.qd - prepared.worldToIndex * dir).length(), 1e-12);
     expectHomogeneous(volume, centre, axisX.unit(), 20 * 0.05);
     expectHomogeneous(volume, centre, -axisZ.unit(), 20 * 0.02);
 }
