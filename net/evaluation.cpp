@@ -15,7 +15,6 @@
 #include "synth/ray_tracer.h"
 #include "synth/scene_json.h"
 
-
 #include <cmath>
 #include <filesystem>
 #include <iomanip>

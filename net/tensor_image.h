@@ -27,5 +27,4 @@ inline torch::Tensor toGridCoordinate(const torch::Tensor& pixels, double size) 
     return pixels * (2.0 / size) - 1.0;
 }
 
-
 }  // namespace lh::net

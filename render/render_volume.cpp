@@ -258,7 +258,6 @@ RenderVolume::RenderVolume(const LightingVolume& volume) {
 
 RenderVolume::RayOrigin RenderVolume::rayOrigin(const Vec3d& world) const {
     RayOrigin origin;
-    origin.world = world;
     for (std::size_t k = 0; k < levels.size(); ++k) origin.index[k] = levels[k].toIndex(world);
     return origin;
 }

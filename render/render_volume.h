@@ -130,8 +130,7 @@ public:
     // What every ray from one origin shares (all the rays of an envmap): the origin in each
     // level's index coordinates, computed once instead of once per ray.
     struct RayOrigin {
-        Vec3d world;
-        std::array<Vec3d, kMaxLevels> index;
+        std::array<Vec3d, kMaxLevels> index;  // entries [0, levels.size()) are set
     };
     RayOrigin rayOrigin(const Vec3d& world) const;
     int partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
