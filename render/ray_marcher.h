@@ -19,7 +19,9 @@
 // taking the medium at its Gauss node: the optical depth of a piece is then exact for
 // polynomials of degree 2 cellNodes - 1 (exact for trilinear media with 2 nodes), and with a
 // constant colour so is the radiance. Lattice cells whose eight corners are all empty are
-// skipped without sampling (exact: the field is zero inside them). Inside a piece the
+// skipped without sampling (exact: the field is zero inside them), and so is everything outside
+// the box of a level's occupied cells and, inside a brick, outside the box of its occupied
+// cells: the walk visits only cells that can hold medium. Inside a piece the
 // sub-segments hold the medium constant, which misplaces light between them where the colour
 // changes (exact for a constant colour, however thick). That error grows with the optical
 // depth the piece shows (tau times the transmittance in front of it) and with how bright it

@@ -36,20 +36,30 @@ inline bool intersectBox(const LevelRay& ray, const Vec3d& lo, const Vec3d& hi, 
     return tNear < tFar;
 }
 
-// Appends the occupancy words of one brick's lattice (RenderLevel::cellMask).
-void appendCellMask(const std::vector<float>& lattice, std::vector<uint64_t>& masks) {
-    constexpr int n = RenderLevel::kLattice;
+// Appends the occupancy words of one brick's lattice (RenderLevel::cellMask) and the box
+// around its occupied cells (RenderLevel::cellBox).
+void appendCellOccupancy(const std::vector<float>& lattice, std::vector<uint64_t>& masks,
+                         std::vector<RenderLevel::CellBox>& boxes) {
+    constexpr int n = RenderLevel::kLattice, cells = RenderLevel::kBrick;
     const auto dense = [&](int x, int y, int z) { return lattice[std::size_t((z * n + y) * n + x) * 4] > 0.f; };
-    for (int z = 0; z < RenderLevel::kBrick; ++z) {
+    RenderLevel::CellBox box{{cells, cells, cells}, {0, 0, 0}};
+    for (int z = 0; z < cells; ++z) {
         uint64_t word = 0;
-        for (int y = 0; y < RenderLevel::kBrick; ++y)
-            for (int x = 0; x < RenderLevel::kBrick; ++x) {
+        for (int y = 0; y < cells; ++y)
+            for (int x = 0; x < cells; ++x) {
                 bool any = false;
                 for (int c = 0; c < 8 && !any; ++c) any = dense(x + (c & 1), y + ((c >> 1) & 1), z + (c >> 2));
-                if (any) word |= uint64_t(1) << (x + RenderLevel::kBrick * y);
+                if (!any) continue;
+                word |= uint64_t(1) << (x + cells * y);
+                const int at[3] = {x, y, z};
+                for (int a = 0; a < 3; ++a) {
+                    box.lo[a] = uint8_t(std::min<int>(box.lo[a], at[a]));
+                    box.hi[a] = uint8_t(std::max<int>(box.hi[a], at[a] + 1));
+                }
             }
         masks.push_back(word);
     }
+    boxes.push_back(box);
 }
 
 // True if the box of `inner` lies inside the box of `outer` (both in world space), up to
@@ -180,7 +190,14 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
         if (lattice[b].empty()) continue;
         out.brickTable[b] = next++;
         out.brickData.insert(out.brickData.end(), lattice[b].begin(), lattice[b].end());
-        appendCellMask(lattice[b], out.cellMasks);
+        appendCellOccupancy(lattice[b], out.cellMasks, out.cellBoxes);
+        const RenderLevel::CellBox& box = out.cellBoxes.back();
+        const int brick[3] = {b % out.brickCount[0], (b / out.brickCount[0]) % out.brickCount[1],
+                              b / (out.brickCount[0] * out.brickCount[1])};
+        for (int a = 0; a < 3; ++a) {
+            out.occupiedLo[a] = std::min(out.occupiedLo[a], double(brick[a] * RenderLevel::kBrick + box.lo[a]));
+            out.occupiedHi[a] = std::max(out.occupiedHi[a], double(brick[a] * RenderLevel::kBrick + box.hi[a]));
+        }
     }
     return out;
 }
@@ -253,29 +270,53 @@ RenderVolume::RenderVolume(const LightingVolume& volume) {
     }
     nested_ = true;
     for (std::size_t k = 1; k < levels.size(); ++k) nested_ = nested_ && boxInside(levels[k], levels[k - 1]);
+    axisAligned_ = std::all_of(levels.begin(), levels.end(), [](const RenderLevel& l) { return l.axisAligned; });
     typicalRadiance_ = typicalSurfaceRadiance(levels);
 }
 
 RenderVolume::RayOrigin RenderVolume::rayOrigin(const Vec3d& world) const {
     RayOrigin origin;
-    for (std::size_t k = 0; k < levels.size(); ++k) origin.index[k] = levels[k].toIndex(world);
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+        const RenderLevel& level = levels[k];
+        const Vec3d q = level.toIndex(world);
+        origin.index[k] = q;
+        if (!level.axisAligned) continue;
+        for (int a = 0; a < 3; ++a) {  // index offsets times the voxel size (signed)
+            origin.toLowFace[k][a] = (level.domainLo[a] - q[a]) * level.indexToWorld(a, a);
+            origin.toHighFace[k][a] = (level.domainHi[a] - q[a]) * level.indexToWorld(a, a);
+        }
+    }
     return origin;
 }
 
-int RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
-                               LevelRay* levelRays) const {
-    if (!nested_) return partitionRayGeneral(origin, dir, pieces, levelRays);
+int RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces) const {
+    if (!nested_) return partitionRayGeneral(origin, dir, pieces);
     // Nested boxes: the ray's interval in a finer level lies inside its interval in every
     // coarser level, so the pieces, in ray order, are the coarser levels' entry parts
     // (coarsest first), the finest level hit, then their exit parts (finest first).
     const int n = int(levels.size());
     double lo[kMaxPieces], hi[kMaxPieces];
     int hit = 0;  // levels 0 .. hit-1 are hit (a level missed means every finer one is too)
-    for (; hit < n; ++hit) {
-        const RenderLevel& level = levels[hit];
-        const LevelRay ray = level.rayFromIndexOrigin(origin.index[hit], dir);
-        if (levelRays) levelRays[hit] = ray;
-        if (!intersectBox(ray, level.domainLo, level.domainHi, lo[hit], hi[hit])) break;
+    const Vec3d invDir(1.0 / dir.x(), 1.0 / dir.y(), 1.0 / dir.z());
+    if (axisAligned_ && std::isfinite(invDir.x()) && std::isfinite(invDir.y()) && std::isfinite(invDir.z())) {
+        // Slab tests in scene units, three products per level and no division. (A zero
+        // component would make 0 x inf; those rays take the index-space test below.)
+        for (; hit < n; ++hit) {
+            double tNear = 0.0, tFar = std::numeric_limits<double>::infinity();
+            for (int a = 0; a < 3; ++a) {
+                const double t0 = origin.toLowFace[hit][a] * invDir[a], t1 = origin.toHighFace[hit][a] * invDir[a];
+                tNear = std::max(tNear, std::min(t0, t1));
+                tFar = std::min(tFar, std::max(t0, t1));
+            }
+            if (!(tNear < tFar)) break;
+            lo[hit] = tNear, hi[hit] = tFar;
+        }
+    } else {
+        for (; hit < n; ++hit) {
+            const RenderLevel& level = levels[hit];
+            const LevelRay ray = level.rayFromIndexOrigin(origin.index[hit], dir);
+            if (!intersectBox(ray, level.domainLo, level.domainHi, lo[hit], hi[hit])) break;
+        }
     }
     int count = 0;
     for (int k = 0; k + 1 < hit; ++k)
@@ -286,15 +327,13 @@ int RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece*
     return count;
 }
 
-int RenderVolume::partitionRayGeneral(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
-                                      LevelRay* levelRays) const {
+int RenderVolume::partitionRayGeneral(const RayOrigin& origin, const Vec3d& dir, Piece* pieces) const {
     int count = 0;
     // Finest first: each level claims the parts of its interval no finer level has claimed.
     for (int k = int(levels.size()) - 1; k >= 0; --k) {
         const RenderLevel& level = levels[k];
         double a, b;
         const LevelRay ray = level.rayFromIndexOrigin(origin.index[k], dir);
-        if (levelRays) levelRays[k] = ray;
         if (!intersectBox(ray, level.domainLo, level.domainHi, a, b))
             continue;
         // Subtract claimed intervals from [a, b]; claimed pieces are disjoint.
@@ -352,7 +391,7 @@ std::size_t RenderVolume::memoryBytes() const {
     std::size_t n = 0;
     for (const auto& l : levels)
         n += l.brickData.size() * sizeof(float) + l.brickTable.size() * sizeof(int32_t) +
-             l.cellMasks.size() * sizeof(uint64_t);
+             l.cellMasks.size() * sizeof(uint64_t) + l.cellBoxes.size() * sizeof(RenderLevel::CellBox);
     return n;
 }
 

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace lh {
@@ -92,6 +93,13 @@ public:
     // Occupancy of a stored brick's 8^3 lattice cells: bit (x + 8 y) of word z is set if any of
     // the cell's eight corners (x..x+1, y..y+1, z..z+1) has density.
     const uint64_t* cellMask(int stored) const { return cellMasks.data() + std::size_t(stored) * kBrick; }
+    // The box around a stored brick's occupied cells, in cells [lo, hi) per axis. Every cell
+    // outside it is empty, so a ray walks only the part of the brick inside it (and skips a
+    // brick whose box it misses): a wall two voxels thick fills a box two cells thick.
+    struct CellBox {
+        uint8_t lo[3], hi[3];
+    };
+    const CellBox& cellBox(int stored) const { return cellBoxes[std::size_t(stored)]; }
     const float* brickPointer(int stored) const {
         return brickData.data() + std::size_t(stored) * kLattice * kLattice * kLattice * 4;
     }
@@ -111,6 +119,11 @@ public:
     std::vector<int32_t> brickTable;  // -1 = empty brick
     std::vector<float> brickData;     // kLattice^3 x 4 floats per stored brick
     std::vector<uint64_t> cellMasks;  // kBrick words per stored brick (cellMask)
+    std::vector<CellBox> cellBoxes;   // one per stored brick (cellBox)
+    // The box around every occupied cell of the level, in lattice coordinates (relative to
+    // latticeOrigin): the field is zero outside it, so a ray walks only its part inside.
+    // Empty (lo > hi) when the level stores no brick.
+    Vec3d occupiedLo{std::numeric_limits<double>::max()}, occupiedHi{std::numeric_limits<double>::lowest()};
     double voxelVolume = 0;           // scene units^3
 };
 
@@ -124,30 +137,28 @@ public:
 
     // Ray partition by the finest-wins rule: the ordered t-intervals of a ray (origin, unit
     // direction) and the level that defines the medium on each. Returns the piece count.
-    // With `levelRays` (kMaxLevels entries), also the ray in every level a piece refers to.
     static constexpr int kMaxPieces = 64;
     static constexpr int kMaxLevels = 32;  // the constructor refuses more (InputError)
-    // What every ray from one origin shares (all the rays of an envmap): the origin in each
-    // level's index coordinates, computed once instead of once per ray.
+    // What every ray from one origin shares (all the rays of an envmap), computed once instead
+    // of once per ray: the origin in each level's index coordinates and, for axis-aligned
+    // levels, the offsets from the origin to the level's faces in scene units along each axis
+    // (a ray's slab test is then three products per level).
     struct RayOrigin {
-        std::array<Vec3d, kMaxLevels> index;  // entries [0, levels.size()) are set
+        std::array<Vec3d, kMaxLevels> index;            // entries [0, levels.size()) are set
+        std::array<Vec3d, kMaxLevels> toLowFace, toHighFace;  // set for axis-aligned levels
     };
     RayOrigin rayOrigin(const Vec3d& world) const;
-    int partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
-                     LevelRay* levelRays = nullptr) const;
-    int partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
-                     LevelRay* levelRays = nullptr) const {
-        return partitionRay(rayOrigin(origin), dir, pieces, levelRays);
+    int partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces) const;
+    int partitionRay(const Vec3d& origin, const Vec3d& dir, Piece* pieces) const {
+        return partitionRay(rayOrigin(origin), dir, pieces);
     }
     // The same for any arrangement of levels (overlapping, disjoint): subtracts the intervals
     // finer levels claimed. partitionRay uses it unless every level lies inside the next
     // coarser one (the usual multiscale layout), where each level's interval minus the next
     // finer level's interval is at most two pieces and no subtraction or sort is needed.
-    int partitionRayGeneral(const RayOrigin& origin, const Vec3d& dir, Piece* pieces,
-                            LevelRay* levelRays = nullptr) const;
-    int partitionRayGeneral(const Vec3d& origin, const Vec3d& dir, Piece* pieces,
-                            LevelRay* levelRays = nullptr) const {
-        return partitionRayGeneral(rayOrigin(origin), dir, pieces, levelRays);
+    int partitionRayGeneral(const RayOrigin& origin, const Vec3d& dir, Piece* pieces) const;
+    int partitionRayGeneral(const Vec3d& origin, const Vec3d& dir, Piece* pieces) const {
+        return partitionRayGeneral(rayOrigin(origin), dir, pieces);
     }
     bool nestedLevels() const { return nested_; }
 
@@ -169,6 +180,7 @@ public:
 
 private:
     bool nested_ = false;  // every level's box inside the next coarser level's box
+    bool axisAligned_ = false;  // every level's axes are the world's (RenderLevel::axisAligned)
     double typicalRadiance_ = 0.0;
 };
 

@@ -63,6 +63,10 @@ lighthouse_cli_ok(bench_envmap_report
   STDOUT "paper-spheres" "openvdb-fixed-step" "ours"
   FILES bench_out/speed_error.csv bench_out/speed_error.md bench_out/speed_error.svg
   ARGS bench-envmap example.vdb --points 1 --size 16x8 --out bench_out)
+lighthouse_cli_error(bench_envmap_zero_repeats
+  EXPECT "--repeats must be in [[]1, 100[]]"
+  ARGS bench-envmap example.vdb --points 1 --size 16x8 --repeats 0 --out bench_out_bad)
+set_tests_properties(cli.error.bench_envmap_zero_repeats PROPERTIES FIXTURES_REQUIRED lighthouse_cli)
 
 # `lighthouse edit`: an emissive box added at +x shows up in a re-rendered envmap file.
 lighthouse_cli_ok(edit_add_box_and_scale

@@ -55,6 +55,30 @@ TEST(NestedLevels, PointInCoarseLevelOnlySeesFinerLevelsItLooksInto) {
     EXPECT_EQ(env.at(int(away.column), int(away.row))[2], 0.f);
 }
 
+TEST(NestedLevels, AnEmptyFinerLevelClearsTheCoarseMediumItCovers) {
+    // The marcher skips the parts of a level outside its occupied cells: that must not let the
+    // coarse medium show through where an empty finer level covers it.
+    const auto red = [](const Vec3d&) { return constant(1.f, openvdb::Vec3s(1, 0, 0)); };
+    const auto nothing = [](const Vec3d&) { return MediumSample{}; };
+    const RenderVolume volume(test::volumeOf({coarseLevel(red), fineLevel(nothing)}));
+    // From the centre along +x: 1 unit of empty fine level, then 3 units of coarse medium
+    // (plus at most half a fine voxel of blending into it at the face, the seam-free halo).
+    for (const int nodes : {0, 1, 2}) {
+        MarchOptions o;
+        o.cellNodes = nodes;
+        o.minTransmittance = 0.0;
+        const RayResult r = marchRay(volume, Vec3d(0), Vec3d(1, 0, 0), o);
+        EXPECT_LE(r.transmittance, std::exp(-3.0)) << nodes;
+        EXPECT_GT(r.transmittance, std::exp(-3.0 - 0.05)) << nodes;
+    }
+    // Nothing anywhere: no level stores a brick, and every ray sees black.
+    const RenderVolume empty(test::volumeOf({coarseLevel(nothing), fineLevel(nothing)}));
+    EXPECT_EQ(empty.storedBricks(), 0u);
+    const RayResult r = marchRay(empty, Vec3d(0.3, 0.1, 0), Vec3d(1, 1, 1).unit(), MarchOptions{});
+    EXPECT_EQ(r.transmittance, 1.0);
+    EXPECT_EQ(r.radiance[0], 0.0);
+}
+
 // A smooth (linear) field is reproduced exactly by trilinear interpolation, so any deviation
 // near the level boundary is a seam.
 MediumSample linearField(const Vec3d& p) {
