@@ -116,7 +116,7 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
                     return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{step, threshold, true, tauMax, 0}});
                 });
             }
-    for (double tauMax : {0.25, 0.5, 1.0, 2.0, 3.0, 4.0, 8.0})
+    for (double tauMax : {0.25, 0.5, 1.0, 2.0, 3.0, 4.0, 8.0, 16.0, 64.0})
         for (int nodes : {1, 2, 3}) {
             std::ostringstream s;
             s << nodes << " Gauss node" << (nodes > 1 ? "s" : "") << "/cell, bound " << tauMax;
