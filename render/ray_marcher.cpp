@@ -228,23 +228,8 @@ bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const
     return true;
 }
 
-// Narrows [ta, tb] to the part of the ray u(t) = u0 + t qd inside the box [lo, hi]; false if
-// nothing is left. The boxes are those outside which the field is zero (RenderLevel::cellBox,
-// RenderLevel::occupiedLo), so the narrowing loses nothing.
-inline bool clipToBox(const double lo[3], const double hi[3], const Vec3d& u0, const Vec3d& qd,
-                      const Vec3d& inv, double& ta, double& tb) {
-    for (int a = 0; a < 3; ++a) {
-        if (qd[a] == 0.0) {  // parallel to the box's faces on this axis (0 x inf is NaN)
-            if (u0[a] < lo[a] || u0[a] > hi[a]) return false;
-            continue;
-        }
-        const double tLo = (lo[a] - u0[a]) * inv[a], tHi = (hi[a] - u0[a]) * inv[a];
-        ta = std::max(ta, std::min(tLo, tHi));
-        tb = std::min(tb, std::max(tLo, tHi));
-    }
-    return ta < tb;
-}
-
+// Narrows [ta, tb] to the part of the ray inside a brick's box of occupied cells
+// (RenderLevel::cellBox); the field is zero outside it, so the narrowing loses nothing.
 inline bool clipToCellBox(const RenderLevel::CellBox& box, const Vec3d& ub, const Vec3d& qd,
                           const Vec3d& inv, double& ta, double& tb) {
     const double lo[3] = {double(box.lo[0]), double(box.lo[1]), double(box.lo[2])};

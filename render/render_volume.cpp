@@ -19,22 +19,11 @@ constexpr int kLatticeValues = RenderLevel::kLattice * RenderLevel::kLattice * R
 float cleanSigma(float s) { return std::isfinite(s) && s > 0.f ? std::min(s, 1e15f) : (s > 0.f ? 1e15f : 0.f); }
 float cleanRadiance(float c) { return std::isfinite(c) && c > 0.f ? std::min(c, 1e15f) : (c > 0.f ? 1e15f : 0.f); }
 
-// Slab test of a level ray against [lo, hi]; returns false when it misses.
-inline bool intersectBox(const LevelRay& ray, const Vec3d& lo, const Vec3d& hi, double& tNear,
-                  double& tFar) {
+// The part t >= 0 of a level ray inside [lo, hi]; false when it misses.
+inline bool intersectBox(const LevelRay& ray, const Vec3d& lo, const Vec3d& hi, double& tNear, double& tFar) {
     tNear = 0.0;
     tFar = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (ray.qd[a] == 0.0) {
-            if (ray.q0[a] < lo[a] || ray.q0[a] > hi[a]) return false;
-            continue;
-        }
-        double t0 = (lo[a] - ray.q0[a]) * ray.inv[a], t1 = (hi[a] - ray.q0[a]) * ray.inv[a];
-        if (t0 > t1) std::swap(t0, t1);
-        tNear = std::max(tNear, t0);
-        tFar = std::min(tFar, t1);
-    }
-    return tNear < tFar;
+    return clipToBox(lo.asPointer(), hi.asPointer(), ray.q0, ray.qd, ray.inv, tNear, tFar);
 }
 
 // Appends the occupancy words of one brick's lattice (RenderLevel::cellMask) and the box
@@ -134,14 +123,17 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
     };
 
     const int bricks = int(cells);
+    // Brick cell (x, y, z) of table index b (x fastest, as in brickIndex).
+    const auto brickCoordinates = [&](int b) {
+        return std::array<int, 3>{b % out.brickCount[0], (b / out.brickCount[0]) % out.brickCount[1],
+                                  b / (out.brickCount[0] * out.brickCount[1])};
+    };
     std::vector<std::vector<float>> lattice(bricks);
     tbb::parallel_for(tbb::blocked_range<int>(0, bricks), [&](const tbb::blocked_range<int>& range) {
         auto densityAcc = level.density->getConstAccessor();  // accessors are per task
         auto colorAcc = level.color->getConstAccessor();
         for (int b = range.begin(); b != range.end(); ++b) {
-            const int bx = b % out.brickCount[0];
-            const int by = (b / out.brickCount[0]) % out.brickCount[1];
-            const int bz = b / (out.brickCount[0] * out.brickCount[1]);
+            const auto [bx, by, bz] = brickCoordinates(b);
             const openvdb::Coord lo = out.latticeOrigin +
                                       openvdb::Coord(bx * RenderLevel::kBrick, by * RenderLevel::kBrick,
                                                      bz * RenderLevel::kBrick);
@@ -193,8 +185,7 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
         out.brickData.insert(out.brickData.end(), lattice[b].begin(), lattice[b].end());
         appendCellOccupancy(lattice[b], out.cellMasks, out.cellBoxes);
         const RenderLevel::CellBox& box = out.cellBoxes.back();
-        const int brick[3] = {b % out.brickCount[0], (b / out.brickCount[0]) % out.brickCount[1],
-                              b / (out.brickCount[0] * out.brickCount[1])};
+        const std::array<int, 3> brick = brickCoordinates(b);
         for (int a = 0; a < 3; ++a) {
             out.occupiedLo[a] = std::min(out.occupiedLo[a], double(brick[a] * RenderLevel::kBrick + box.lo[a]));
             out.occupiedHi[a] = std::max(out.occupiedHi[a], double(brick[a] * RenderLevel::kBrick + box.hi[a]));

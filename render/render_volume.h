@@ -32,6 +32,22 @@ struct LevelRay {
     Vec3d q0, qd, inv;
 };
 
+// Slab test: narrows [ta, tb] to the part of u(t) = u0 + t qd inside the box [lo, hi], with
+// inv = 1 / qd (infinite where a component is 0); false if nothing is left.
+inline bool clipToBox(const double lo[3], const double hi[3], const Vec3d& u0, const Vec3d& qd,
+                      const Vec3d& inv, double& ta, double& tb) {
+    for (int a = 0; a < 3; ++a) {
+        if (qd[a] == 0.0) {  // parallel to the box's faces on this axis (0 x inf is NaN)
+            if (u0[a] < lo[a] || u0[a] > hi[a]) return false;
+            continue;
+        }
+        const double tLo = (lo[a] - u0[a]) * inv[a], tHi = (hi[a] - u0[a]) * inv[a];
+        ta = std::max(ta, std::min(tLo, tHi));
+        tb = std::min(tb, std::max(tLo, tHi));
+    }
+    return ta < tb;
+}
+
 // Medium sample in the render representation.
 struct RenderSample {
     float sigma;        // extinction, per scene unit
