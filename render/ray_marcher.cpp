@@ -2,6 +2,7 @@
 
 #include "core/cpu_dispatch.h"
 #include "core/errors.h"
+#include "core/fast_exp.h"
 
 #include <cmath>
 
@@ -40,7 +41,7 @@ inline bool addSegment(const RenderSample& s, double t, double dt, double minT, 
         E = 1.0 - tau * (1.0 - tau * (0.5 - tau / 6.0));
         weight = dt * (1.0 - tau * (0.5 - tau / 6.0));
     } else {
-        E = std::exp(-tau);
+        E = expOfNegative(tau);
         weight = (1.0 - E) / sigma;
     }
     const double tw = r.transmittance * weight;
@@ -49,7 +50,9 @@ inline bool addSegment(const RenderSample& s, double t, double dt, double minT, 
     r.radiance[2] += tw * s.emission[2];
     const double before = r.transmittance;
     r.transmittance *= E;
-    if (before >= 0.5 && r.transmittance < 0.5)  // crossing inside this segment
+    // Crossing T = 0.5 inside this segment: once per ray, so one branch that is nearly never
+    // taken (`&&` would branch on `before >= 0.5` too, which flips once per ray, and mispredict).
+    if ((before >= 0.5) & (r.transmittance < 0.5))
         r.surfaceDistance = t + std::log(before / 0.5) / sigma;
     return r.transmittance >= minT;
 }
@@ -151,41 +154,50 @@ struct GridWalk {
 // misplaced by more than the bound is halved: where a ray meets a bright surface, the parts
 // become short exactly where the density is, and stay exact in optical depth. The halving
 // runs on a stack, front half first (a loop, not recursion, so that the whole marcher can be
-// inlined into one function and compiled for the CPU it runs on: see marchRay).
+// inlined into one function and compiled for the CPU it runs on: see marchRay). The part in
+// hand stays in registers; only back halves wait on the stack.
 template <class Sampler>
 bool integrateCellPiece(const Sampler& sample, double ta, double h, const CellQuadrature& cq, RayResult& r) {
     const MarchOptions& o = cq.options;
     const GaussRule& rule = kGaussRules[o.cellNodes];
+    const double refineAbove = o.cellRefineBound * rule.count;
     struct Part {
         double start, length;
         int depth;  // halvings so far
     };
-    Part pending[kMaxHalvings + 1];  // depth first: at most one waiting back half per depth
+    Part pending[kMaxHalvings];  // depth first: at most one waiting back half per depth
     int waiting = 0;
-    pending[waiting++] = {ta, h, 0};
-    while (waiting > 0) {
-        const Part part = pending[--waiting];
+    Part part{ta, h, 0};
+    for (;;) {
         RenderSample atNode[3];
-        double tau = 0.0;         // optical depth of the part
-        double brightness = 0.0;  // brightest colour channel at the nodes (emission / sigma)
+        double tau = 0.0;  // optical depth of the part
         for (int q = 0; q < rule.count; ++q) {
             atNode[q] = sample(part.start + part.length * rule.node[q]);
-            const RenderSample& s = atNode[q];
-            tau += double(s.sigma) * rule.weight[q] * part.length;
-            if (s.sigma > 0.f)
-                brightness = std::max(brightness, double(std::max({s.emission[0], s.emission[1], s.emission[2]})) / s.sigma);
+            tau += double(atNode[q].sigma) * rule.weight[q] * part.length;
         }
         // The sub-segments misplace light in proportion to the optical depth they see (tau T)
         // and to how bright it is: measured in typical radiances, the same bound holds the
         // error of an envmap relative to its mean radiance, and dim walls are not refined for
         // nothing. Below kSubdivideMinT what follows cannot matter: do not pay for halving there.
-        const double misplaced = tau * r.transmittance * brightness * cq.perTypicalRadiance;
-        if (misplaced > o.cellRefineBound * rule.count && part.depth < kMaxHalvings &&
-            r.transmittance >= kSubdivideMinT) {
-            const double half = 0.5 * part.length;
-            pending[waiting++] = {part.start + half, half, part.depth + 1};  // back half, later
-            pending[waiting++] = {part.start, half, part.depth + 1};         // front half, next
-            continue;
+        if (part.depth < kMaxHalvings && r.transmittance >= kSubdivideMinT) {
+            // Halve if tau T brightness / typical > refineAbove, where brightness is the
+            // brightest colour channel (emission / sigma) over the nodes with density. Written
+            // as one product per node, emission x scale > refineAbove x sigma: the same test
+            // without a division (whose latency the whole loop otherwise waits on).
+            const double scale = tau * r.transmittance * cq.perTypicalRadiance;
+            bool misplacesTooMuch = false;
+            for (int q = 0; q < rule.count; ++q) {
+                const RenderSample& s = atNode[q];
+                const float brightest = std::max({s.emission[0], s.emission[1], s.emission[2]});
+                misplacesTooMuch |= (s.sigma > 0.f) & (brightest * scale > refineAbove * s.sigma);
+            }
+            if (misplacesTooMuch) {
+                const double half = 0.5 * part.length;
+                ++part.depth;
+                pending[waiting++] = {part.start + half, half, part.depth};  // back half, later
+                part.length = half;                                           // front half, now
+                continue;
+            }
         }
         double start = part.start;
         for (int q = 0; q < rule.count; ++q) {
@@ -194,8 +206,9 @@ bool integrateCellPiece(const Sampler& sample, double ta, double h, const CellQu
                 return false;
             start += length;
         }
+        if (waiting == 0) return true;
+        part = pending[--waiting];
     }
-    return true;
 }
 
 // Walks the lattice cells of one brick crossed by [t0, t1] (a DDA at cell resolution) and
