@@ -46,7 +46,8 @@ void addBenchEnvmapCommand(CLI::App& app) {
         ->check(CLI::IsMember({"reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step", "paper-spheres"}));
     cmd->add_option("--seed", o->bench.seed, "Seed of the query points")->capture_default_str();
     cmd->add_option("--repeats", o->bench.repeats,
-                    "Renders per envmap; its time is the fastest (a busy machine only adds time)")
+                    "Timing rounds: each renders every setting at every point once; an envmap's time is its fastest "
+                    "round (a busy machine only adds time)")
         ->capture_default_str();
     cmd->add_option("--out", o->out, "Directory for speed_error.csv/.md/.svg")->capture_default_str();
     cmd->callback([o] { runBench(*o); });

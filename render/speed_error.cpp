@@ -82,26 +82,16 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
     std::vector<ImageRGB> reference;
     for (const Vec3d& p : points) reference.push_back(renderEnvmap(prepared, p, {o.width, o.height, MarchOptions::reference()}));
 
-    std::vector<SpeedErrorRow> rows;
+    // Every setting to measure, first collected, then timed in rounds.
+    struct Trial {
+        std::string method, setting;
+        std::function<ImageRGB(const Vec3d&)> render;
+    };
+    std::vector<Trial> trials;
     const auto measure = [&](const std::string& method, const std::string& setting,
-                             const std::function<ImageRGB(const Vec3d&)>& render) {
-        if (!o.methods.empty() && std::find(o.methods.begin(), o.methods.end(), method) == o.methods.end())
-            return;
-        say(method + ", " + setting);
-        const int repeats = method == "reference-check" ? 1 : o.repeats;
-        std::vector<ImageRGB> images(points.size());
-        double msSum = 0;  // sum over points of the fastest render
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            double fastest = std::numeric_limits<double>::infinity();
-            for (int r = 0; r < repeats; ++r) {
-                const auto start = std::chrono::steady_clock::now();
-                images[i] = render(points[i]);
-                fastest = std::min(fastest, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-            }
-            msSum += fastest;
-        }
-        const ErrorStats e = compareSets(images, reference);  // PSNR of identical images capped at 100
-        rows.push_back({method, setting, msSum / points.size(), e.relativeRmse, e.psnr});
+                             std::function<ImageRGB(const Vec3d&)> render) {
+        if (o.methods.empty() || std::find(o.methods.begin(), o.methods.end(), method) != o.methods.end())
+            trials.push_back({method, setting, std::move(render)});
     };
     // How converged the reference is: the same at half the step and optical depth per step.
     measure("reference-check", "step 0.025, tau<0.01", [&](const Vec3d& p) {
@@ -112,7 +102,7 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
             for (double step : {0.25, 0.5, 1.0, 2.0}) {
                 std::ostringstream s;
                 s << "step " << step << ", T<" << threshold << ", tau<" << tauMax;
-                measure("ours-steps", s.str(), [&](const Vec3d& p) {
+                measure("ours-steps", s.str(), [&, step, threshold, tauMax](const Vec3d& p) {
                     return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{step, threshold, true, tauMax, 0}});
                 });
             }
@@ -123,14 +113,47 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
             MarchOptions march;
             march.cellRefineBound = tauMax;
             march.cellNodes = nodes;
-            measure("ours-cells", s.str(), [&](const Vec3d& p) { return renderEnvmap(prepared, p, {o.width, o.height, march}); });
+            measure("ours-cells", s.str(), [&, march](const Vec3d& p) { return renderEnvmap(prepared, p, {o.width, o.height, march}); });
         }
     for (double step : {0.5, 1.0, 2.0})
         measure("openvdb-fixed-step", "step " + std::to_string(step).substr(0, 4),
-                [&](const Vec3d& p) { return renderEnvmapOpenVdbFixedStep(volume, p, o.width, o.height, step); });
+                [&, step](const Vec3d& p) { return renderEnvmapOpenVdbFixedStep(volume, p, o.width, o.height, step); });
     for (int spheres : {32, 64, 128, 256})
         measure("paper-spheres", std::to_string(spheres) + " spheres/level",
-                [&](const Vec3d& p) { return renderEnvmapConcentricSpheres(prepared, p, o.width, o.height, spheres); });
+                [&, spheres](const Vec3d& p) { return renderEnvmapConcentricSpheres(prepared, p, o.width, o.height, spheres); });
+
+    // Round r renders every setting at every point once: a setting's time per point is the
+    // fastest over the rounds, so each setting is sampled across the whole run and a drift of
+    // the machine's speed (this VM's changes by up to 2x within an hour) falls on all of them
+    // alike. The errors come from the first round (renders are deterministic).
+    std::vector<SpeedErrorRow> rows(trials.size());
+    std::vector<std::vector<double>> fastest(trials.size(),
+                                             std::vector<double>(points.size(), std::numeric_limits<double>::infinity()));
+    for (int round = 0; round < o.repeats; ++round) {
+        for (std::size_t k = 0; k < trials.size(); ++k) {
+            const Trial& trial = trials[k];
+            const bool once = trial.method == "reference-check";  // 2 s an envmap: one round
+            if (once && round > 0) continue;
+            say("round " + std::to_string(round + 1) + "/" + std::to_string(o.repeats) + ": " + trial.method + ", " +
+                trial.setting);
+            std::vector<ImageRGB> images(points.size());
+            for (std::size_t i = 0; i < points.size(); ++i) {
+                const auto start = std::chrono::steady_clock::now();
+                images[i] = trial.render(points[i]);
+                fastest[k][i] = std::min(
+                    fastest[k][i], std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            }
+            if (round == 0) {
+                const ErrorStats e = compareSets(images, reference);  // PSNR of identical images capped at 100
+                rows[k] = {trial.method, trial.setting, 0.0, e.relativeRmse, e.psnr};
+            }
+        }
+    }
+    for (std::size_t k = 0; k < trials.size(); ++k) {
+        double msSum = 0;  // sum over points of the fastest render
+        for (double ms : fastest[k]) msSum += ms;
+        rows[k].msPerEnvmap = msSum / points.size();
+    }
     return rows;
 }
 

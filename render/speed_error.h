@@ -17,10 +17,12 @@ struct SpeedErrorOptions {
     int points = 8;               // random query points in free space
     int width = 240, height = 120;
     uint64_t seed = 1;
-    // Timed renders of each envmap: a row's time is, per point, the fastest of `repeats`
-    // renders, averaged over the points (the reference-check row renders once). The minimum
-    // is what a method costs; a busy machine only ever adds to it, and this VM's speed drifts
-    // by up to 2x within an hour. Every row gets the same number, so ratios stay fair.
+    // Timed rounds: each round renders every setting at every point once, and a row's time
+    // is, per point, the fastest over the rounds, averaged over the points (the
+    // reference-check row renders in the first round only). The minimum is what a method
+    // costs (a busy machine only ever adds to it), and rounds spread every setting over the
+    // whole run, so a drift of the machine's speed (this VM's changes by up to 2x within an
+    // hour) falls on all settings alike and ratios stay fair.
     int repeats = 3;
     // Methods to measure ("reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step",
     // "paper-spheres"); empty: all of them.
