@@ -6,6 +6,7 @@
 #include "render/baseline_renderers.h"
 #include "render/image_io.h"
 #include "render/metrics.h"
+#include "render/speed_summary.h"
 #include "render/svg_plot.h"
 #include "vdb/sparsity.h"
 #include "vdb/volume_io.h"
@@ -73,6 +74,12 @@ ErrorStats compareSets(const std::vector<ImageRGB>& images, const std::vector<Im
 
 }  // namespace
 
+std::string cellQuadratureLabel(int nodes, double bound) {
+    std::ostringstream s;
+    s << nodes << " Gauss node" << (nodes > 1 ? "s" : "") << "/cell, bound " << bound;
+    return s.str();
+}
+
 std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume, const SpeedErrorOptions& o,
                                                     const std::function<void(const std::string&)>& progress) {
     const RenderVolume prepared(volume);
@@ -108,12 +115,10 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
             }
     for (double tauMax : {0.25, 0.5, 1.0, 2.0, 3.0, 4.0, 8.0, 16.0, 64.0})
         for (int nodes : {1, 2, 3}) {
-            std::ostringstream s;
-            s << nodes << " Gauss node" << (nodes > 1 ? "s" : "") << "/cell, bound " << tauMax;
             MarchOptions march;
             march.cellRefineBound = tauMax;
             march.cellNodes = nodes;
-            measure("ours-cells", s.str(), [&, march](const Vec3d& p) { return renderEnvmap(prepared, p, {o.width, o.height, march}); });
+            measure("ours-cells", cellQuadratureLabel(nodes, tauMax), [&, march](const Vec3d& p) { return renderEnvmap(prepared, p, {o.width, o.height, march}); });
         }
     for (double step : {0.5, 1.0, 2.0})
         measure("openvdb-fixed-step", "step " + std::to_string(step).substr(0, 4),
@@ -190,6 +195,7 @@ void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::st
                       r.setting.c_str(), r.msPerEnvmap, 1000 / r.msPerEnvmap, r.relativeRmse, r.psnr);
         md << line;
     }
+    md << speedSummaryMarkdown(summarizeSpeedAgainstError(rows));
     const std::filesystem::path dir(directory);
     writeTextFile((dir / "speed_error.csv").string(), csv.str());
     writeTextFile((dir / "speed_error.md").string(), md.str());

@@ -42,12 +42,15 @@ struct SpeedErrorRow {
 // the least dense of 64 x count random points in that box instead. Deterministic for a seed.
 std::vector<Vec3d> freeSpacePoints(const RenderVolume& volume, int count, uint64_t seed);
 
+// The `setting` of an "ours-cells" row: "2 Gauss nodes/cell, bound 1".
+std::string cellQuadratureLabel(int nodes, double bound);
+
 std::vector<SpeedErrorRow> measureSpeedAgainstError(
     const LightingVolume& volume, const SpeedErrorOptions& options,
     const std::function<void(const std::string&)>& progress = {});
 
-// speed_error.csv, speed_error.md (a table) and speed_error.svg (time against error, one
-// curve per method) in `directory`.
+// speed_error.csv, speed_error.md (a table, then the summary of render/speed_summary.h) and
+// speed_error.svg (time against error, one curve per method) in `directory`.
 void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::string& directory);
 
 // ---- Memory against error (issue 7, "storing only what the scene needs") ----

@@ -49,7 +49,9 @@ TEST(Envmap, BlocksAppearAtConventionPixels) {
         // The block spans about +-14 degrees (+-9 pixels); for the top case the rows near
         // the pole hold it, so its centroid sits a few rows below row 0.
         EXPECT_NEAR(row, c.row, c.row == 0.0 ? 8.0 : 0.5) << c.centre;
-        if (c.column >= 0) EXPECT_NEAR(column, c.column, 0.5) << c.centre;
+        if (c.column >= 0) {
+            EXPECT_NEAR(column, c.column, 0.5) << c.centre;
+        }
         // The opposite direction sees nothing.
         const EnvmapCoord opposite = envmapCoordinate(-c.centre.unit(), W, H);
         const int orow = std::min(H - 1, int(opposite.row)), ocol = int(opposite.column);

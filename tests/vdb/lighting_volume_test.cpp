@@ -17,7 +17,9 @@ TEST(LightingVolume, FromLayoutHasNestedLevelsCoarsestFirst) {
         EXPECT_EQ(v.levels[k].color->getName(), colorGridName(int(k)));
         EXPECT_EQ(v.levels[k].color->getVectorType(), openvdb::VEC_INVARIANT);
         EXPECT_EQ(v.levels[k].density->getGridClass(), openvdb::GRID_FOG_VOLUME);
-        if (k > 0) EXPECT_LT(v.levels[k].voxelVolume(), v.levels[k - 1].voxelVolume());
+        if (k > 0) {
+            EXPECT_LT(v.levels[k].voxelVolume(), v.levels[k - 1].voxelVolume());
+        }
     }
     const WorldBox b = v.levels[1].worldBounds();
     EXPECT_NEAR(b.min.z(), 0.0, 1e-12);
