@@ -25,8 +25,7 @@ inline double expOfNegative(double x) {
     const double shifted = y * kInvLn2 + kShift;
     int64_t shiftedBits, shiftBits;
     std::memcpy(&shiftedBits, &shifted, sizeof shifted);
-    const double kShiftValue = kShift;
-    std::memcpy(&shiftBits, &kShiftValue, sizeof kShiftValue);
+    std::memcpy(&shiftBits, &kShift, sizeof kShift);
     const int64_t k = shiftedBits - shiftBits;  // |k| <= 1010
     const double kd = shifted - kShift;
     // r = y - k ln 2 in two parts (Cody-Waite): ln2Hi has its low 32 bits zero, so k ln2Hi is
