@@ -2,10 +2,12 @@
 
 #include "core/errors.h"
 #include "render/envmap_layout.h"
+#include "render/first_medium.h"
 
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace lh {
@@ -38,14 +40,23 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
         sinTheta[c] = std::sin(theta), cosTheta[c] = std::cos(theta);
     }
     const RenderVolume::RayOrigin origin = volume.rayOrigin(position);
+    std::optional<FirstMediumMap> firstMedium;
+    if (options.startAtFirstMedium && options.march.cellNodes > 0)
+        firstMedium.emplace(volume, position, options.width, options.height);
     tbb::parallel_for(tbb::blocked_range<int>(0, options.height),
                       [&](const tbb::blocked_range<int>& rows) {
+                          // Where each ray of these rows first meets the medium (0: from the origin).
+                          std::vector<float> starts(std::size_t(rows.size()) * options.width, 0.f);
+                          if (firstMedium) firstMedium->fillRows(rows.begin(), rows.end(), starts.data());
                           for (int r = rows.begin(); r != rows.end(); ++r) {
                               const double phi = envmapPolarAngle(r + 0.5, options.height);
                               const double sinPhi = std::sin(phi), cosPhi = std::cos(phi);
                               for (int c = 0; c < options.width; ++c) {
                                   const Vec3d d = envmapDirectionFromAngles(sinPhi, cosPhi, sinTheta[c], cosTheta[c]);
-                                  const RayResult ray = marchRay(volume, origin, d, options.march);
+                                  const double start = starts[std::size_t(r - rows.begin()) * options.width + c];
+                                  // A ray that never meets the medium sees the background.
+                                  const RayResult ray = std::isinf(start) ? RayResult{}
+                                                                          : marchRay(volume, origin, d, options.march, start);
                                   float* px = image.at(c, r);
                                   for (int i = 0; i < 3; ++i)
                                       px[i] = float(ray.radiance[i] + ray.transmittance * options.background[i]);

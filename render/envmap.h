@@ -14,6 +14,10 @@ struct EnvmapOptions {
     // Black, the convention, by default; the evaluation's baselines fill what an MPI leaves
     // unseen with grey or with the photo's mean colour.
     float background[3] = {0.f, 0.f, 0.f};
+    // Find where each ray first meets the medium once per envmap (render/first_medium.h) and
+    // start its march there. Same answers (up to rounding), fewer instructions (measured in
+    // docs/performance.md); cell quadrature only (fixed steps start from the origin).
+    bool startAtFirstMedium = true;
 
     // Throws InputError unless W = 2 H >= 2 and the background is finite and non-negative,
     // ResourceError above kMaxEnvmapPixels.

@@ -309,13 +309,16 @@ RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d&
 // (docs/performance.md).
 LH_PER_CPU_FLATTENED
 RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin, const Vec3d& dir,
-                   const MarchOptions& options) {
+                   const MarchOptions& options, double tStart) {
     RayResult result;
+    if (options.cellNodes == 0) tStart = 0.0;
     Piece pieces[RenderVolume::kMaxPieces];
     const int count = volume.partitionRay(origin, dir, pieces);
     const double typical = volume.typicalRadiance();
     const CellQuadrature cq{options, typical > 0.0 ? 1.0 / typical : 0.0};
     for (int p = 0; p < count; ++p) {
+        if (pieces[p].t1 <= tStart) continue;  // no medium before tStart
+        pieces[p].t0 = std::max(pieces[p].t0, tStart);
         const RenderLevel& level = volume.levels[pieces[p].level];
         // Mapped per piece, not in the partition: most rays end before their coarser pieces.
         const LevelRay ray = level.rayFromIndexOrigin(origin.index[pieces[p].level], dir);

@@ -73,8 +73,11 @@ constexpr int kMaxSubsteps = 64;  // sub-steps of one optically thick step
 
 RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d& dir,
                    const MarchOptions& options);
-// The same for many rays from one origin (RenderVolume::rayOrigin, computed once).
+// The same for many rays from one origin (RenderVolume::rayOrigin, computed once). With the
+// cell quadrature, `tStart` (scene units) may name a distance before which the ray meets no
+// medium (render/first_medium.h): the walks start there, with the same answer up to rounding.
+// Fixed steps ignore it (their steps are laid from where each level's piece begins).
 RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin, const Vec3d& dir,
-                   const MarchOptions& options);
+                   const MarchOptions& options, double tStart = 0.0);
 
 }  // namespace lh

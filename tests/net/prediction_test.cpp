@@ -58,7 +58,7 @@ protected:
         for (float v : env.pixels) EXPECT_TRUE(std::isfinite(v));
     }
 
-    Predictor predictor{PredictorOptions{modelPath(), "cpu", 2}};
+    Predictor predictor{PredictorOptions{modelPath(), "cpu", 2, ""}};
 };
 
 TEST_F(PredictionTest, PredictsAVolumeInTheLayoutOfTheDepthRange) {
@@ -120,8 +120,8 @@ TEST_F(PredictionTest, ImpossibleInputsAreRefusedWithAClearError) {
 }
 
 TEST(PredictorOptionsTest, UnknownDeviceOrMissingModelIsAClearError) {
-    EXPECT_THROW(Predictor(PredictorOptions{"/nonexistent/model.pt", "cpu", 1}), FileError);
-    EXPECT_THROW(Predictor(PredictorOptions{"", "tpu", 1}), InputError);
+    EXPECT_THROW(Predictor(PredictorOptions{"/nonexistent/model.pt", "cpu", 1, ""}), FileError);
+    EXPECT_THROW(Predictor(PredictorOptions{"", "tpu", 1, ""}), InputError);
 }
 
 }  // namespace
