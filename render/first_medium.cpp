@@ -11,104 +11,7 @@ namespace lh {
 
 namespace {
 
-using OccupiedBox = FirstMediumMap::Footprint;  // the box part of it
-
-// The parts of `box` that no finer level's domain covers (finest wins: a finer level claims
-// its whole domain, so coarse medium inside it is never seen), appended to `out`. A domain
-// that covers the box along two axes cuts it into at most two parts along the third; other
-// overlaps keep the box whole (it is a bound, not the field).
-void appendVisibleParts(OccupiedBox box, const std::vector<OccupiedBox>& finerDomains, std::size_t first,
-                        std::vector<OccupiedBox>& out) {
-    for (std::size_t j = first; j < finerDomains.size(); ++j) {
-        const OccupiedBox& d = finerDomains[j];
-        int uncovered = -1, uncoveredCount = 0;  // axes along which d does not span the box
-        bool disjoint = false;
-        for (int a = 0; a < 3; ++a) {
-            disjoint |= d.hi[a] <= box.lo[a] || d.lo[a] >= box.hi[a];
-            if (!(d.lo[a] <= box.lo[a] && d.hi[a] >= box.hi[a])) uncovered = a, ++uncoveredCount;
-        }
-        if (disjoint || uncoveredCount > 1) continue;
-        if (uncoveredCount == 0) return;  // wholly hidden
-        const int a = uncovered;
-        if (box.lo[a] < d.lo[a]) {
-            OccupiedBox below = box;
-            below.hi[a] = d.lo[a];
-            appendVisibleParts(below, finerDomains, j + 1, out);
-        }
-        if (box.hi[a] > d.hi[a]) {
-            OccupiedBox above = box;
-            above.lo[a] = d.hi[a];
-            appendVisibleParts(above, finerDomains, j + 1, out);
-        }
-        return;
-    }
-    double squared = 0.0;
-    for (int a = 0; a < 3; ++a) {
-        const double gap = std::max({box.lo[a], -box.hi[a], 0.0});
-        squared += gap * gap;
-    }
-    box.nearest = std::sqrt(squared);
-    out.push_back(box);
-}
-
-// Level `level`'s index box [lo, hi] in scene units relative to `origin` (axis-aligned levels).
-OccupiedBox worldBox(const RenderLevel& level, const double lo[3], const double hi[3], const Vec3d& origin) {
-    OccupiedBox box{};
-    for (int a = 0; a < 3; ++a) {
-        const double w0 = level.indexToWorld(a, a) * (lo[a] - level.indexOffset[a]);
-        const double w1 = level.indexToWorld(a, a) * (hi[a] - level.indexOffset[a]);
-        box.lo[a] = std::min(w0, w1) - origin[a];
-        box.hi[a] = std::max(w0, w1) - origin[a];
-    }
-    return box;
-}
-
-// Every stored brick's box of occupied cells, in scene units relative to `origin`, widened by
-// a millionth of a voxel so that rounding cannot put the start past the medium, less what
-// finer levels hide. False if a level is not axis-aligned (its boxes are not boxes in the world).
-bool occupiedBoxes(const RenderVolume& volume, const Vec3d& origin, std::vector<OccupiedBox>& boxes) {
-    constexpr int n = RenderLevel::kBrick;
-    const std::size_t levels = volume.levels.size();
-    for (const RenderLevel& level : volume.levels)
-        if (!level.axisAligned && !level.cellBoxes.empty()) return false;
-    // Domains of the levels (outer voxel faces), narrowed by a millionth of a voxel so that
-    // rounding cannot hide medium they do not cover.
-    std::vector<OccupiedBox> domains;
-    for (const RenderLevel& level : volume.levels) {
-        OccupiedBox d = worldBox(level, level.domainLo.asPointer(), level.domainHi.asPointer(), origin);
-        const double margin = 1e-6 * std::cbrt(level.voxelVolume);
-        for (int a = 0; a < 3; ++a) d.lo[a] += margin, d.hi[a] -= margin;
-        domains.push_back(level.axisAligned ? d : OccupiedBox{});  // an empty box hides nothing
-    }
-    for (std::size_t k = 0; k < levels; ++k) {
-        const RenderLevel& level = volume.levels[k];
-        if (level.cellBoxes.empty()) continue;
-        const std::vector<OccupiedBox> finerDomains(domains.begin() + std::ptrdiff_t(k) + 1, domains.end());
-        const double margin = 1e-6 * std::cbrt(level.voxelVolume);
-        for (int bz = 0; bz < level.brickCount[2]; ++bz)
-            for (int by = 0; by < level.brickCount[1]; ++by)
-                for (int bx = 0; bx < level.brickCount[0]; ++bx) {
-                    const int b = level.brickIndex(bx, by, bz);
-                    if (b < 0) continue;
-                    const RenderLevel::CellBox& cells = level.cellBox(b);
-                    const int brick[3] = {bx, by, bz};
-                    // Lattice point k of the level is index coordinate latticeOrigin + k; cell
-                    // i of a brick spans lattice points [i, i + 1].
-                    double lo[3], hi[3];
-                    bool empty = false;
-                    for (int a = 0; a < 3; ++a) {
-                        empty |= cells.lo[a] >= cells.hi[a];
-                        lo[a] = level.latticeOrigin[a] + n * brick[a] + cells.lo[a];
-                        hi[a] = level.latticeOrigin[a] + n * brick[a] + cells.hi[a];
-                    }
-                    if (empty) continue;
-                    OccupiedBox box = worldBox(level, lo, hi, origin);
-                    for (int a = 0; a < 3; ++a) box.lo[a] -= margin, box.hi[a] += margin;
-                    appendVisibleParts(box, finerDomains, 0, boxes);
-                }
-    }
-    return true;
-}
+using OccupiedBox = FirstMediumMap::Footprint;  // a medium box relative to the origin, and more
 
 bool containsOrigin(const OccupiedBox& b) {
     return b.lo[0] <= 0 && b.hi[0] >= 0 && b.lo[1] <= 0 && b.hi[1] >= 0 && b.lo[2] <= 0 && b.hi[2] >= 0;
@@ -157,8 +60,22 @@ float roundedDown(double t) {
 
 FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, int width, int height)
     : width_(width), height_(height) {
+    // The volume's medium boxes (render/medium_boxes.h) relative to the origin, each with the
+    // distance to its nearest point.
     std::vector<OccupiedBox> boxes;
-    if (!occupiedBoxes(volume, origin, boxes) || std::any_of(boxes.begin(), boxes.end(), containsOrigin)) {
+    boxes.reserve(volume.mediumBoxes().size());
+    for (const MediumBox& m : volume.mediumBoxes()) {
+        OccupiedBox box{};
+        double squared = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = m.lo[a] - origin[a], box.hi[a] = m.hi[a] - origin[a];
+            const double gap = std::max({box.lo[a], -box.hi[a], 0.0});
+            squared += gap * gap;
+        }
+        box.nearest = std::sqrt(squared);
+        boxes.push_back(box);
+    }
+    if (!volume.mediumBoxesValid() || std::any_of(boxes.begin(), boxes.end(), containsOrigin)) {
         skipNothing_ = true;
         return;
     }

@@ -2,13 +2,14 @@
 // every ray.
 //
 // All the rays of an envmap leave one point. Before the first occupied cell a ray's walk is
-// pure overhead (empty bricks, empty cells, the levels' pieces it crosses on the way). So every
-// stored brick's box of occupied cells (RenderLevel::cellBox, in scene units, less what finer
-// levels hide) is projected onto the envmap: the pixels whose rays may hit it lie in a
-// rectangle of rows (polar angles) and columns (azimuths), and for those the ray's entry into
-// the box is computed exactly, several pixels at once. A pixel's start is the nearest entry; a
-// ray that meets no box never meets medium (infinity). The field is zero outside the boxes, so
-// the march from the start gives the answer it gives from the origin (up to rounding).
+// pure overhead (empty bricks, empty cells, the levels' pieces it crosses on the way). So the
+// volume's medium boxes (render/medium_boxes.h: each stored brick's box of occupied cells in
+// scene units, less what finer levels hide) are projected onto the envmap: the pixels whose
+// rays may hit a box lie in a rectangle of rows (polar angles) and columns (azimuths), and for
+// those the ray's entry into the box is computed exactly, several pixels at once. A pixel's
+// start is the nearest entry; a ray that meets no box never meets medium (infinity). The field
+// is zero outside the boxes, so the march from the start gives the answer it gives from the
+// origin (up to rounding).
 #pragma once
 
 #include "render/render_volume.h"

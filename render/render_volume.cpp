@@ -1,5 +1,7 @@
 #include "render/render_volume.h"
 
+#include "render/medium_boxes.h"
+
 #include "core/cpu_dispatch.h"
 #include "core/errors.h"
 
@@ -264,6 +266,7 @@ RenderVolume::RenderVolume(const LightingVolume& volume) {
     for (std::size_t k = 1; k < levels.size(); ++k) nested_ = nested_ && boxInside(levels[k], levels[k - 1]);
     axisAligned_ = std::all_of(levels.begin(), levels.end(), [](const RenderLevel& l) { return l.axisAligned; });
     typicalRadiance_ = typicalSurfaceRadiance(levels);
+    mediumBoxesValid_ = boundMedium(levels, mediumBoxes_);
 }
 
 RenderVolume::RayOrigin RenderVolume::rayOrigin(const Vec3d& world) const {

@@ -143,6 +143,12 @@ public:
     double voxelVolume = 0;           // scene units^3
 };
 
+// A box in scene units (world frame) outside which a volume's field is zero: see
+// RenderVolume::mediumBoxes.
+struct MediumBox {
+    double lo[3], hi[3];
+};
+
 class RenderVolume {
 public:
     // Prepares every level (coarsest first, as in the volume). Throws ResourceError if a level
@@ -184,6 +190,12 @@ public:
     // point; 0 outside every level.
     double voxelSizeAt(const Vec3d& world) const;
 
+    // Boxes outside which the field is zero under finest-wins (render/medium_boxes.h): each
+    // stored brick's box of occupied cells, less what finer levels' domains hide. Empty with
+    // mediumBoxesValid() false if a level holding medium is not axis-aligned.
+    const std::vector<MediumBox>& mediumBoxes() const { return mediumBoxes_; }
+    bool mediumBoxesValid() const { return mediumBoxesValid_; }
+
     std::size_t storedBricks() const;
     std::size_t memoryBytes() const;
 
@@ -198,6 +210,8 @@ private:
     bool nested_ = false;  // every level's box inside the next coarser level's box
     bool axisAligned_ = false;  // every level's axes are the world's (RenderLevel::axisAligned)
     double typicalRadiance_ = 0.0;
+    std::vector<MediumBox> mediumBoxes_;
+    bool mediumBoxesValid_ = false;
 };
 
 struct Piece {
