@@ -11,14 +11,14 @@ namespace lh {
 
 namespace {
 
-using OccupiedBox = FirstMediumMap::Footprint;  // a medium box relative to the origin, and more
+using Footprint = FirstMediumMap::Footprint;
 
-bool containsOrigin(const OccupiedBox& b) {
+bool containsOrigin(const Footprint& b) {
     return b.lo[0] <= 0 && b.hi[0] >= 0 && b.lo[1] <= 0 && b.hi[1] >= 0 && b.lo[2] <= 0 && b.hi[2] >= 0;
 }
 
 // Distance from the origin along unit `d` to where it enters `b`; +inf if it misses.
-double entryDistance(const OccupiedBox& b, const Vec3d& d) {
+double entryDistance(const Footprint& b, const Vec3d& d) {
     double tNear = 0.0, tFar = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
         if (d[a] == 0.0) {  // parallel to the faces: inside the slab or never
@@ -62,10 +62,10 @@ FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, 
     : width_(width), height_(height) {
     // The volume's medium boxes (render/medium_boxes.h) relative to the origin, each with the
     // distance to its nearest point.
-    std::vector<OccupiedBox> boxes;
+    std::vector<Footprint> boxes;
     boxes.reserve(volume.mediumBoxes().size());
     for (const MediumBox& m : volume.mediumBoxes()) {
-        OccupiedBox box{};
+        Footprint box{};
         double squared = 0.0;
         for (int a = 0; a < 3; ++a) {
             box.lo[a] = m.lo[a] - origin[a], box.hi[a] = m.hi[a] - origin[a];
@@ -97,7 +97,7 @@ FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, 
     reciprocalsFinite_ = finite(perSinTheta_) && finite(perCosTheta_) && finite(perSinPhi_) && finite(perCosPhi_);
     // Nearest boxes first: a pixel whose start is already no farther than a box's nearest point
     // cannot get a nearer one from it, which one comparison tells.
-    std::sort(boxes.begin(), boxes.end(), [](const OccupiedBox& a, const OccupiedBox& b) { return a.nearest < b.nearest; });
+    std::sort(boxes.begin(), boxes.end(), [](const Footprint& a, const Footprint& b) { return a.nearest < b.nearest; });
     const double rowsPerRadian = height / M_PI, columnsPerRadian = width / (2.0 * M_PI);
     for (Footprint f : boxes) {
         // Polar angle phi = atan2(rho, u) of a point at height u = -y above the origin and
