@@ -17,21 +17,6 @@ bool containsOrigin(const Footprint& b) {
     return b.lo[0] <= 0 && b.hi[0] >= 0 && b.lo[1] <= 0 && b.hi[1] >= 0 && b.lo[2] <= 0 && b.hi[2] >= 0;
 }
 
-// Distance from the origin along unit `d` to where it enters `b`; +inf if it misses.
-double entryDistance(const Footprint& b, const Vec3d& d) {
-    double tNear = 0.0, tFar = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0) {  // parallel to the faces: inside the slab or never
-            if (b.lo[a] > 0.0 || b.hi[a] < 0.0) return std::numeric_limits<double>::infinity();
-            continue;
-        }
-        const double inv = 1.0 / d[a], t0 = b.lo[a] * inv, t1 = b.hi[a] * inv;
-        tNear = std::max(tNear, std::min(t0, t1));
-        tFar = std::min(tFar, std::max(t0, t1));
-    }
-    return tNear <= tFar ? tNear : std::numeric_limits<double>::infinity();
-}
-
 // atan2(y, x) within 1.2e-5 radians, modulo 2 pi (a degree-9 odd polynomial for atan on
 // [0, 1]; worst error measured over 10^7 random points), at a fraction of the cost of libm's:
 // footprints are widened by kAtanError, 8x that, so that they still hold every pixel.
@@ -75,26 +60,26 @@ FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, 
         box.nearest = std::sqrt(squared);
         boxes.push_back(box);
     }
-    if (!volume.mediumBoxesValid() || std::any_of(boxes.begin(), boxes.end(), containsOrigin)) {
-        skipNothing_ = true;
-        return;
-    }
-    sinTheta_.resize(width), cosTheta_.resize(width), perSinTheta_.resize(width), perCosTheta_.resize(width);
-    sinPhi_.resize(height), cosPhi_.resize(height), perSinPhi_.resize(height), perCosPhi_.resize(height);
+    // The reciprocals of the renderer's per-row and per-column factors of a direction
+    // (envmap.cpp): a direction's are (1/sinPhi 1/sinTheta, -1/cosPhi, 1/sinPhi 1/cosTheta).
+    // They are finite for the layout's pixel centres; were one not, no ray would be skipped.
+    perSinTheta_.resize(width), perCosTheta_.resize(width), perSinPhi_.resize(height), perCosPhi_.resize(height);
     for (int c = 0; c < width; ++c) {
         const double theta = envmapAzimuth(c + 0.5, width);
-        sinTheta_[c] = std::sin(theta), cosTheta_[c] = std::cos(theta);
-        perSinTheta_[c] = 1.0 / sinTheta_[c], perCosTheta_[c] = 1.0 / cosTheta_[c];
+        perSinTheta_[c] = 1.0 / std::sin(theta), perCosTheta_[c] = 1.0 / std::cos(theta);
     }
     for (int r = 0; r < height; ++r) {
         const double phi = envmapPolarAngle(r + 0.5, height);
-        sinPhi_[r] = std::sin(phi), cosPhi_[r] = std::cos(phi);
-        perSinPhi_[r] = 1.0 / sinPhi_[r], perCosPhi_[r] = -1.0 / cosPhi_[r];  // y = -cos phi
+        perSinPhi_[r] = 1.0 / std::sin(phi), perCosPhi_[r] = -1.0 / std::cos(phi);  // y = -cos phi
     }
     const auto finite = [](const std::vector<double>& v) {
         return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
     };
-    reciprocalsFinite_ = finite(perSinTheta_) && finite(perCosTheta_) && finite(perSinPhi_) && finite(perCosPhi_);
+    if (!volume.mediumBoxesValid() || std::any_of(boxes.begin(), boxes.end(), containsOrigin) ||
+        !(finite(perSinTheta_) && finite(perCosTheta_) && finite(perSinPhi_) && finite(perCosPhi_))) {
+        skipNothing_ = true;
+        return;
+    }
     // Nearest boxes first: a pixel whose start is already no farther than a box's nearest point
     // cannot get a nearer one from it, which one comparison tells.
     std::sort(boxes.begin(), boxes.end(), [](const Footprint& a, const Footprint& b) { return a.nearest < b.nearest; });
@@ -166,12 +151,9 @@ void FirstMediumMap::fillRows(int rowBegin, int rowEnd, float* out) const {
             const Footprint& b = footprints_[rowFootprints_[i]];
             const float nearest = b.nearestBelow;  // skipping on it never loses a nearer entry
             // The slab of y is the same along a row (y = -cos phi): a row that misses it misses the box.
-            double nearY = 0.0, farY = std::numeric_limits<double>::infinity();
-            if (reciprocalsFinite_) {
-                const double y0 = b.lo[1] * perCosPhi_[r], y1 = b.hi[1] * perCosPhi_[r];
-                nearY = std::max(0.0, std::min(y0, y1)), farY = std::max(y0, y1);
-                if (nearY > farY) continue;
-            }
+            const double y0 = b.lo[1] * perCosPhi_[r], y1 = b.hi[1] * perCosPhi_[r];
+            const double nearY = std::max(0.0, std::min(y0, y1)), farY = std::max(y0, y1);
+            if (nearY > farY) continue;
             const int columnLo = b.columnLo, columnHi = b.columnHi;
             // The azimuth wraps around: [columnLo, columnHi] lies in [-width, 2 width) and is at
             // most width long, so it is at most two runs of [0, width).
@@ -182,25 +164,18 @@ void FirstMediumMap::fillRows(int rowBegin, int rowEnd, float* out) const {
                 for (int block = run[0] / kBlock; run[0] <= run[1] && block <= run[1] / kBlock; ++block) {
                     if (rowBlockMax[block] <= nearest) continue;  // nothing here can get nearer
                     const int first = std::max(run[0], block * kBlock), last = std::min(run[1], block * kBlock + kBlock - 1);
-                    if (reciprocalsFinite_) {
-                        // Branch-free, so that the compiler runs it on several pixels at once.
-                        const double perSinPhi = perSinPhi_[r], loX = b.lo[0], hiX = b.hi[0], loZ = b.lo[2], hiZ = b.hi[2];
-                        const double* perSinTheta = perSinTheta_.data();
-                        const double* perCosTheta = perCosTheta_.data();
-                        for (int c = first; c <= last; ++c) {
-                            const double ix = perSinPhi * perSinTheta[c], iz = perSinPhi * perCosTheta[c];
-                            const double x0 = loX * ix, x1 = hiX * ix, z0 = loZ * iz, z1 = hiZ * iz;
-                            const double tNear = std::max(nearY, std::max(std::min(x0, x1), std::min(z0, z1)));
-                            const double tFar = std::min(farY, std::min(std::max(x0, x1), std::max(z0, z1)));
-                            const float below = float(tNear * kBelowOne), current = row[c];
-                            const float entry = tNear <= tFar ? below : kInf;
-                            row[c] = entry < current ? entry : current;
-                        }
-                    } else {
-                        for (int c = first; c <= last; ++c) {
-                            const Vec3d d = envmapDirectionFromAngles(sinPhi_[r], cosPhi_[r], sinTheta_[c], cosTheta_[c]);
-                            row[c] = std::min(row[c], roundedDown(entryDistance(b, d)));
-                        }
+                    // Branch-free, so that the compiler runs it on several pixels at once.
+                    const double perSinPhi = perSinPhi_[r], loX = b.lo[0], hiX = b.hi[0], loZ = b.lo[2], hiZ = b.hi[2];
+                    const double* perSinTheta = perSinTheta_.data();
+                    const double* perCosTheta = perCosTheta_.data();
+                    for (int c = first; c <= last; ++c) {
+                        const double ix = perSinPhi * perSinTheta[c], iz = perSinPhi * perCosTheta[c];
+                        const double x0 = loX * ix, x1 = hiX * ix, z0 = loZ * iz, z1 = hiZ * iz;
+                        const double tNear = std::max(nearY, std::max(std::min(x0, x1), std::min(z0, z1)));
+                        const double tFar = std::min(farY, std::min(std::max(x0, x1), std::max(z0, z1)));
+                        const float below = float(tNear * kBelowOne), current = row[c];
+                        const float entry = tNear <= tFar ? below : kInf;
+                        row[c] = entry < current ? entry : current;
                     }
                     const int blockEnd = std::min(width, (block + 1) * kBlock);
                     rowBlockMax[block] = *std::max_element(row + block * kBlock, row + blockEnd);

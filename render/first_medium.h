@@ -23,7 +23,7 @@ class FirstMediumMap {
 public:
     // Prepares the boxes' footprints on the width x height envmap (CONVENTIONS.md layout) at
     // `origin`. If the origin lies inside a box of occupied cells, or a level's axes are not
-    // the world's, every start is 0 (no skipping).
+    // the world's, or a direction has a component of exactly 0, every start is 0 (no skipping).
     FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, int width, int height);
 
     // Starts of the pixels of rows [rowBegin, rowEnd), row-major into `out` (width floats per
@@ -57,11 +57,8 @@ private:
     // Row r is reached by footprints_[rowFootprints_[i]] for i in [rowStart_[r], rowStart_[r + 1]).
     std::vector<std::size_t> rowStart_;
     std::vector<uint32_t> rowFootprints_;
-    // The renderer's per-row and per-column factors of a direction (envmap.cpp), so that the
-    // directions are the same, and their reciprocals.
-    std::vector<double> sinTheta_, cosTheta_, sinPhi_, cosPhi_;
+    // Reciprocals of the renderer's per-row and per-column factors of a direction (envmap.cpp).
     std::vector<double> perSinTheta_, perCosTheta_, perSinPhi_, perCosPhi_;
-    bool reciprocalsFinite_ = true;
 };
 
 }  // namespace lh
