@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -53,6 +54,16 @@ struct RenderSample {
     float sigma;        // extinction, per scene unit
     float emission[3];  // sigma * colour
 };
+
+// Four floats as one SIMD register (the channels of a lattice point), and what sampling does
+// with them.
+using Float4 = float __attribute__((vector_size(16)));
+inline Float4 load4(const float* p) {
+    Float4 v;
+    std::memcpy(&v, p, sizeof v);  // unaligned load
+    return v;
+}
+inline Float4 lerp(Float4 a, Float4 b, float f) { return a + f * (b - a); }
 
 class RenderLevel {
 public:
@@ -92,18 +103,19 @@ public:
     // Trilinear sample inside one lattice cell: `corner` points at its (0, 0, 0) lattice point
     // (+4 floats is +x, +kLatticeY is +y, +kLatticeZ is +z), (fx, fy, fz) in [0, 1] (clamped).
     static constexpr int kLatticeY = kLattice * 4, kLatticeZ = kLattice * kLattice * 4;
+    //
+    // The four channels of a lattice point are one 16-byte vector (GCC's and Clang's vector
+    // extension): the seven lerps run on all four at once. Written as a loop over channels,
+    // the compiler vectorised it in some inlined copies of the marcher and not in others
+    // (3.7x the instructions of the sample there).
     static RenderSample sampleCell(const float* p, float fx, float fy, float fz) {
         fx = std::clamp(fx, 0.f, 1.f), fy = std::clamp(fy, 0.f, 1.f), fz = std::clamp(fz, 0.f, 1.f);
         constexpr int sy = kLatticeY, sz = kLatticeZ;
-        float out[4];
-        for (int c = 0; c < 4; ++c) {  // lerps: exact for equal corners (constant media)
-            const float c00 = p[c] + fx * (p[4 + c] - p[c]);
-            const float c10 = p[sy + c] + fx * (p[sy + 4 + c] - p[sy + c]);
-            const float c01 = p[sz + c] + fx * (p[sz + 4 + c] - p[sz + c]);
-            const float c11 = p[sz + sy + c] + fx * (p[sz + sy + 4 + c] - p[sz + sy + c]);
-            const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
-            out[c] = c0 + fz * (c1 - c0);
-        }
+        // Lerps: exact for equal corners (constant media).
+        const Float4 c00 = lerp(load4(p), load4(p + 4), fx), c10 = lerp(load4(p + sy), load4(p + sy + 4), fx),
+                     c01 = lerp(load4(p + sz), load4(p + sz + 4), fx),
+                     c11 = lerp(load4(p + sz + sy), load4(p + sz + sy + 4), fx);
+        const Float4 out = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
         return {out[0], {out[1], out[2], out[3]}};
     }
     // Occupancy of a stored brick's 8^3 lattice cells: bit (x + 8 y) of word z is set if any of
