@@ -1,5 +1,6 @@
 // `lighthouse eval --data DIR [--model M] [-o DIR]`: the paper's Table 2 on our test split.
 #include "cli/commands.h"
+#include "cli/net_commands.h"
 #include "net/evaluation.h"
 
 #include <iostream>
@@ -9,8 +10,7 @@ namespace lh::cli {
 void addEvalCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<net::EvalOptions>();
     o->hdriDir = LIGHTHOUSE_HDRI_DIR;
-    CLI::App* cmd = app.add_subcommand(
-        "eval", "Score the model against baselines and the oracle on a synthetic test split (Markdown table + contact sheet)");
+    CLI::App* cmd = app.add_subcommand("eval", netCommandDescription("eval"));
     cmd->add_option("--data", o->data, "Test split written by `lighthouse synth --split test`")->required();
     cmd->add_option("--model", o->model, "Model file (default: the bundled small model)");
     cmd->add_option("-o,--output", o->out, "Output directory: table.md, metrics.csv, contact_sheet.png")

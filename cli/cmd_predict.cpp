@@ -1,6 +1,7 @@
 // `lighthouse predict --ref REF.png --src SRC.png --cameras cameras.json [--model M] -o scene.vdb`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/net_commands.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "net/predictor.h"
@@ -75,7 +76,7 @@ void runPredict(const PredictOptions& o, int threads) {
 
 void addPredictCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<PredictOptions>();
-    CLI::App* cmd = app.add_subcommand("predict", "Predict a lighting volume (MPI + completed levels) from a stereo pair");
+    CLI::App* cmd = app.add_subcommand("predict", netCommandDescription("predict"));
     cmd->add_option("--ref", o->ref, "Reference image (.png/.jpg sRGB or .exr linear)")->required();
     cmd->add_option("--src", o->src, "Second image of the stereo pair")->required();
     cmd->add_option("--cameras", o->cameras, "cameras.json with ref and src (near/far optional: estimated if absent)")

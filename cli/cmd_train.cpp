@@ -1,5 +1,6 @@
 // `lighthouse train --data DIR --config small --out model.pt`
 #include "cli/commands.h"
+#include "cli/net_commands.h"
 #include "net/trainer.h"
 
 #include <iostream>
@@ -8,8 +9,7 @@ namespace lh::cli {
 
 void addTrainCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<net::TrainOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "train", "Train the prediction network on a synthetic data set (resumes from OUT.checkpoint)");
+    CLI::App* cmd = app.add_subcommand("train", netCommandDescription("train"));
     cmd->add_option("--data", o->data, "Training split written by `lighthouse synth --split train`")->required();
     cmd->add_option("--val", o->validation, "Held-out scenes for validation (default: the last 5% of --data)");
     cmd->add_option("--config", o->config, "small or paper")->capture_default_str();

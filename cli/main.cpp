@@ -1,6 +1,11 @@
-// lighthouse: one binary, one subcommand per file. Library errors are caught here once and
-// reported as a single line with a non-zero exit (OpenVDB's vdb_render model).
+// lighthouse: one subcommand per file. Library errors are caught here once and reported as a
+// single line with a non-zero exit (OpenVDB's vdb_render model).
+//
+// Compiled twice: as `lighthouse`, without libtorch, which hands the network's commands to
+// `lighthouse-net` (cli/net_commands.h), and, when libtorch is found, as `lighthouse-net`,
+// which has every command (LIGHTHOUSE_HAS_NET).
 #include "cli/commands.h"
+#include "cli/net_commands.h"
 #include "core/errors.h"
 
 #include <openvdb/openvdb.h>
@@ -12,6 +17,9 @@
 #include <utility>
 
 int main(int argc, char** argv) {
+#ifndef LIGHTHOUSE_HAS_NET
+    if (const char* command = lh::cli::netCommandIn(argc, argv)) return lh::cli::runInNetBinary(argv, command);
+#endif
     CLI::App app{"lighthouse: predict, store and render spatially-coherent lighting volumes"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Show help for every command");
@@ -23,6 +31,8 @@ int main(int argc, char** argv) {
     lh::cli::addPredictCommand(app, threads);
     lh::cli::addTrainCommand(app, threads);
     lh::cli::addEvalCommand(app, threads);
+#else
+    lh::cli::addNetCommandEntries(app);
 #endif
     lh::cli::addRenderEnvmapCommand(app);
     lh::cli::addRenderViewCommand(app);

@@ -81,3 +81,9 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/small.pt)
   set_tests_properties(cli.ok.predict_bundled_model PROPERTIES FIXTURES_SETUP lighthouse_predicted)
   set_tests_properties(cli.ok.predict_output_is_a_volume PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_predicted")
 endif()
+
+# `lighthouse` hands the network's commands to `lighthouse-net` with every argument, global
+# options included.
+lighthouse_cli_ok(help_predict_through_lighthouse_net
+  STDOUT "Usage:.*predict" "--ref" "--src" "--cameras" "--device"
+  ARGS --threads 1 predict --help)

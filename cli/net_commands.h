@@ -1,0 +1,37 @@
+// The prediction network's commands (train, predict, eval) live in a second executable,
+// `lighthouse-net`, built beside `lighthouse` when libtorch is found. Loading libtorch costs
+// ~0.9 s and ~150 MB at every start, which `lighthouse render-envmap`, `info` and the other
+// commands have no use for; so `lighthouse` does not link it, lists the network's commands in
+// its help, and hands a command line that names one to `lighthouse-net` unchanged (exec).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace lh::cli {
+
+struct NetCommand {
+    const char* name;
+    const char* description;
+};
+// Shared by the real commands (cmd_train.cpp, ...) and the entries in `lighthouse --help`.
+inline constexpr NetCommand kNetCommands[] = {
+    {"predict", "Predict a lighting volume (MPI + completed levels) from a stereo pair"},
+    {"train", "Train the prediction network on a synthetic data set (resumes from OUT.checkpoint)"},
+    {"eval", "Score the model against baselines and the oracle on a synthetic test split (Markdown table + "
+             "contact sheet)"},
+};
+const char* netCommandDescription(const char* name);
+
+// The network command a command line runs (its first word that is not an option or the
+// value of --threads), or nullptr.
+const char* netCommandIn(int argc, char** argv);
+
+// Replaces this process by `lighthouse-net` beside this executable, with the same arguments.
+// Returns only if that fails: prints one error line and returns the exit status (1).
+int runInNetBinary(char** argv, const char* command);
+
+// Entries for the network's commands in `lighthouse --help` (never parsed: a command line
+// that names one is handed over before parsing).
+void addNetCommandEntries(CLI::App& app);
+
+}  // namespace lh::cli

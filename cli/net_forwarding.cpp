@@ -1,0 +1,60 @@
+#include "cli/net_commands.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+namespace lh::cli {
+
+const char* netCommandDescription(const char* name) {
+    for (const NetCommand& c : kNetCommands)
+        if (std::strcmp(c.name, name) == 0) return c.description;
+    return "";
+}
+
+const char* netCommandIn(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--threads") {
+            ++i;  // its value
+            continue;
+        }
+        if (!arg.empty() && arg[0] == '-') continue;
+        for (const NetCommand& c : kNetCommands)
+            if (arg == c.name) return c.name;
+        return nullptr;  // the first word names another command
+    }
+    return nullptr;
+}
+
+int runInNetBinary(char** argv, const char* command) {
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::filesystem::path net = self.parent_path() / "lighthouse-net";
+    if (ec || ::access(net.c_str(), X_OK) != 0) {
+        std::cerr << "lighthouse: error: '" << command
+                  << "' needs the prediction network, which this build does not have (lighthouse-net "
+                     "was not found beside "
+                  << (ec ? std::string("this executable") : self.string())
+                  << "; build with libtorch installed: see README)\n";
+        return 1;
+    }
+    ::execv(net.c_str(), argv);  // returns only on failure
+    std::cerr << "lighthouse: error: could not run " << net.string() << ": " << std::strerror(errno) << "\n";
+    return 1;
+}
+
+void addNetCommandEntries(CLI::App& app) {
+    for (const NetCommand& c : kNetCommands) {
+        CLI::App* entry = app.add_subcommand(c.name, c.description);
+        entry->allow_extras();
+        entry->footer("Runs in lighthouse-net (libtorch); 'lighthouse " + std::string(c.name) +
+                      " --help' shows its options.");
+    }
+}
+
+}  // namespace lh::cli
