@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -40,6 +41,9 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
         sinTheta[c] = std::sin(theta), cosTheta[c] = std::cos(theta);
     }
     const RenderVolume::RayOrigin origin = volume.rayOrigin(position);
+    // What a pixel whose ray meets no medium shows (a ray with T = 1 and no radiance).
+    const float background[3] = {float(options.background[0]), float(options.background[1]),
+                                 float(options.background[2])};
     std::optional<FirstMediumMap> firstMedium;
     if (options.startAtFirstMedium && options.march.cellNodes > 0)
         firstMedium.emplace(volume, position, options.width, options.height);
@@ -51,13 +55,17 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
                           for (int r = rows.begin(); r != rows.end(); ++r) {
                               const double phi = envmapPolarAngle(r + 0.5, options.height);
                               const double sinPhi = std::sin(phi), cosPhi = std::cos(phi);
+                              const float* rowStarts = starts.data() + std::size_t(r - rows.begin()) * options.width;
                               for (int c = 0; c < options.width; ++c) {
-                                  const Vec3d d = envmapDirectionFromAngles(sinPhi, cosPhi, sinTheta[c], cosTheta[c]);
-                                  const double start = starts[std::size_t(r - rows.begin()) * options.width + c];
-                                  // A ray that never meets the medium sees the background.
-                                  const RayResult ray = std::isinf(start) ? RayResult{}
-                                                                          : marchRay(volume, origin, d, options.march, start);
                                   float* px = image.at(c, r);
+                                  // A ray that never meets the medium sees the background (most
+                                  // of an envmap's rays in a sparse room: keep them cheap).
+                                  if (std::isinf(rowStarts[c])) {
+                                      std::copy(background, background + 3, px);
+                                      continue;
+                                  }
+                                  const Vec3d d = envmapDirectionFromAngles(sinPhi, cosPhi, sinTheta[c], cosTheta[c]);
+                                  const RayResult ray = marchRay(volume, origin, d, options.march, rowStarts[c]);
                                   for (int i = 0; i < 3; ++i)
                                       px[i] = float(ray.radiance[i] + ray.transmittance * options.background[i]);
                               }

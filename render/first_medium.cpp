@@ -3,6 +3,8 @@
 #include "core/cpu_dispatch.h"
 #include "render/envmap_layout.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -39,6 +41,46 @@ constexpr double kBelowOne = 1.0 - 1.0 / (1 << 22);
 float roundedDown(double t) {
     const float f = float(t);
     return double(f) > t ? std::nextafter(f, 0.f) : f;
+}
+
+// Sets the rectangle of rows and columns of the width x height envmap whose rays may hit box
+// `f` (lo, hi and nearest set, relative to the origin) and its nearest distance rounded down;
+// false if no pixel's ray may.
+bool placeOnEnvmap(Footprint& f, int width, int height) {
+    const double rowsPerRadian = height / M_PI, columnsPerRadian = width / (2.0 * M_PI);
+    // Polar angle phi = atan2(rho, u) of a point at height u = -y above the origin and
+    // distance rho from the vertical axis: it falls as u rises, and rises with rho above the
+    // origin (falls below). Over the box, u and rho lie in [uLo, uHi] and [rhoLo, rhoHi], so
+    // the extremes are at these corners of that rectangle: a bound, not always attained.
+    const double uLo = -f.hi[1], uHi = -f.lo[1];
+    const double gapX = std::max({f.lo[0], -f.hi[0], 0.0}), gapZ = std::max({f.lo[2], -f.hi[2], 0.0});
+    const double farX = std::max(-f.lo[0], f.hi[0]), farZ = std::max(-f.lo[2], f.hi[2]);
+    const double rhoLo = std::sqrt(gapX * gapX + gapZ * gapZ), rhoHi = std::sqrt(farX * farX + farZ * farZ);
+    const double phiLo = roughAtan2(uHi > 0.0 ? rhoLo : rhoHi, uHi) - kAtanError;
+    const double phiHi = roughAtan2(uLo > 0.0 ? rhoHi : rhoLo, uLo) + kAtanError;
+    f.rowLo = std::max(0, int(std::ceil(phiLo * rowsPerRadian - 0.5)));
+    f.rowHi = std::min(height - 1, int(std::floor(phiHi * rowsPerRadian - 0.5)));
+    // Azimuth theta = atan2(x, z): a box whose (x, z) rectangle holds the vertical axis is
+    // seen at every azimuth; otherwise it spans less than pi, between two of its corners.
+    f.columnLo = 0, f.columnHi = width - 1;
+    if (gapX > 0.0 || gapZ > 0.0) {
+        const double middle = roughAtan2(0.5 * (f.lo[0] + f.hi[0]), 0.5 * (f.lo[2] + f.hi[2]));
+        double below = 0.0, above = 0.0;  // corners' azimuths relative to the middle's
+        for (const double x : {f.lo[0], f.hi[0]})
+            for (const double z : {f.lo[2], f.hi[2]}) {
+                double d = roughAtan2(x, z) - middle;
+                d = d > M_PI ? d - 2.0 * M_PI : d < -M_PI ? d + 2.0 * M_PI : d;
+                below = std::min(below, d), above = std::max(above, d);
+            }
+        // Column c's azimuth is (c + 0.5) / columnsPerRadian - pi (envmap_layout.h).
+        f.columnLo = int(std::ceil((middle + below - 2 * kAtanError + M_PI) * columnsPerRadian - 0.5));
+        f.columnHi = int(std::floor((middle + above + 2 * kAtanError + M_PI) * columnsPerRadian - 0.5));
+        if (f.columnHi - f.columnLo + 1 >= width) f.columnLo = 0, f.columnHi = width - 1;
+        if (f.columnHi < 0) f.columnLo += width, f.columnHi += width;
+        if (f.columnLo >= width) f.columnLo -= width, f.columnHi -= width;
+    }
+    f.nearestBelow = roundedDown(f.nearest);
+    return f.rowLo <= f.rowHi && f.columnLo <= f.columnHi;
 }
 
 }  // namespace
@@ -83,42 +125,14 @@ FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, 
     // Nearest boxes first: a pixel whose start is already no farther than a box's nearest point
     // cannot get a nearer one from it, which one comparison tells.
     std::sort(boxes.begin(), boxes.end(), [](const Footprint& a, const Footprint& b) { return a.nearest < b.nearest; });
-    const double rowsPerRadian = height / M_PI, columnsPerRadian = width / (2.0 * M_PI);
-    for (Footprint f : boxes) {
-        // Polar angle phi = atan2(rho, u) of a point at height u = -y above the origin and
-        // distance rho from the vertical axis: it falls as u rises, and rises with rho above the
-        // origin (falls below). Over the box, u and rho lie in [uLo, uHi] and [rhoLo, rhoHi], so
-        // the extremes are at these corners of that rectangle: a bound, not always attained.
-        const double uLo = -f.hi[1], uHi = -f.lo[1];
-        const double gapX = std::max({f.lo[0], -f.hi[0], 0.0}), gapZ = std::max({f.lo[2], -f.hi[2], 0.0});
-        const double farX = std::max(-f.lo[0], f.hi[0]), farZ = std::max(-f.lo[2], f.hi[2]);
-        const double rhoLo = std::sqrt(gapX * gapX + gapZ * gapZ), rhoHi = std::sqrt(farX * farX + farZ * farZ);
-        const double phiLo = roughAtan2(uHi > 0.0 ? rhoLo : rhoHi, uHi) - kAtanError;
-        const double phiHi = roughAtan2(uLo > 0.0 ? rhoHi : rhoLo, uLo) + kAtanError;
-        f.rowLo = std::max(0, int(std::ceil(phiLo * rowsPerRadian - 0.5)));
-        f.rowHi = std::min(height - 1, int(std::floor(phiHi * rowsPerRadian - 0.5)));
-        // Azimuth theta = atan2(x, z): a box whose (x, z) rectangle holds the vertical axis is
-        // seen at every azimuth; otherwise it spans less than pi, between two of its corners.
-        f.columnLo = 0, f.columnHi = width - 1;
-        if (gapX > 0.0 || gapZ > 0.0) {
-            const double middle = roughAtan2(0.5 * (f.lo[0] + f.hi[0]), 0.5 * (f.lo[2] + f.hi[2]));
-            double below = 0.0, above = 0.0;  // corners' azimuths relative to the middle's
-            for (const double x : {f.lo[0], f.hi[0]})
-                for (const double z : {f.lo[2], f.hi[2]}) {
-                    double d = roughAtan2(x, z) - middle;
-                    d = d > M_PI ? d - 2.0 * M_PI : d < -M_PI ? d + 2.0 * M_PI : d;
-                    below = std::min(below, d), above = std::max(above, d);
-                }
-            // Column c's azimuth is (c + 0.5) / columnsPerRadian - pi (envmap_layout.h).
-            f.columnLo = int(std::ceil((middle + below - 2 * kAtanError + M_PI) * columnsPerRadian - 0.5));
-            f.columnHi = int(std::floor((middle + above + 2 * kAtanError + M_PI) * columnsPerRadian - 0.5));
-            if (f.columnHi - f.columnLo + 1 >= width) f.columnLo = 0, f.columnHi = width - 1;
-            if (f.columnHi < 0) f.columnLo += width, f.columnHi += width;
-            if (f.columnLo >= width) f.columnLo -= width, f.columnHi -= width;
-        }
-        f.nearestBelow = roundedDown(f.nearest);
-        if (f.rowLo <= f.rowHi && f.columnLo <= f.columnHi) footprints_.push_back(f);
-    }
+    // Each box's rectangle of pixels, in parallel (the envmap's other core would otherwise wait
+    // on this part), then the boxes that reach some pixel, still nearest first.
+    std::vector<char> reaches(boxes.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) reaches[i] = placeOnEnvmap(boxes[i], width, height);
+    });
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+        if (reaches[i]) footprints_.push_back(boxes[i]);
     // Per row, the footprints that reach it, nearest first (compressed rows: offsets, then indices).
     rowStart_.assign(std::size_t(height) + 1, 0);
     for (const Footprint& f : footprints_)
