@@ -24,7 +24,7 @@ void runBench(BenchOptions& o) {
     if (o.bench.repeats < 1 || o.bench.repeats > 100) throw InputError("--repeats must be in [1, 100]");
     const LightingVolume volume = loadVolumeForCli(o.file, false);
     const auto rows = measureSpeedAgainstError(volume, o.bench, [](const std::string& s) { std::cerr << "bench: " << s << "\n"; });
-    writeSpeedErrorReport(rows, o.out);
+    writeSpeedErrorReport(rows, o.out, o.bench.width, o.bench.height);
     std::ifstream table(o.out + "/speed_error.md");
     std::cout << table.rdbuf();
     std::cerr << "report (csv, md, svg plot) written to " << o.out << "/\n";

@@ -42,8 +42,9 @@ struct SpeedErrorRow {
 // the least dense of 64 x count random points in that box instead. Deterministic for a seed.
 std::vector<Vec3d> freeSpacePoints(const RenderVolume& volume, int count, uint64_t seed);
 
-// The `setting` of an "ours-cells" row: "2 Gauss nodes/cell, bound 1".
-std::string cellQuadratureLabel(int nodes, double bound);
+// The `setting` of an "ours-cells" row: "2 Gauss nodes/cell, bound 1, T<0.0001" (Gauss nodes
+// per lattice cell, MarchOptions::cellRefineBound, the termination threshold minTransmittance).
+std::string cellQuadratureLabel(int nodes, double bound, double threshold);
 
 std::vector<SpeedErrorRow> measureSpeedAgainstError(
     const LightingVolume& volume, const SpeedErrorOptions& options,
@@ -51,7 +52,9 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(
 
 // speed_error.csv, speed_error.md (a table, then the summary of render/speed_summary.h) and
 // speed_error.svg (time against error, one curve per method) in `directory`.
-void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::string& directory);
+// `width` x `height` is the size the rows' envmaps were rendered at.
+void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::string& directory, int width,
+                           int height);
 
 // ---- Memory against error (issue 7, "storing only what the scene needs") ----
 
@@ -90,6 +93,14 @@ struct MemoryErrorRow {
 std::vector<MemoryErrorRow> measureMemoryAgainstError(
     const LightingVolume& volume, const MemoryErrorOptions& options,
     const std::function<void(const std::string&)>& progress = {});
+
+// Issue 7's storage target: at most this fraction of the dense float storage, with at most
+// this many dB of envmap PSNR lost against ground truth.
+constexpr double kMemoryTargetFraction = 0.1, kMemoryTargetLossDb = 0.1;
+
+// The target read from the row at bound `tau` (the default's): on disk, in memory, and the
+// loss against ground truth where the rows have it. Markdown, appended to memory_error.md.
+std::string memoryTargetMarkdown(const std::vector<MemoryErrorRow>& rows, double denseBytes, double tau);
 
 // memory_error.csv, memory_error.md and memory_error.svg (envmap error against bytes).
 void writeMemoryErrorReport(const std::vector<MemoryErrorRow>& rows, const std::string& directory,

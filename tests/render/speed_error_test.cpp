@@ -19,21 +19,52 @@ TEST(SpeedError, RoundsKeepEachRowsOwnErrorAndTime) {
     std::set<std::string> said;
     const std::vector<SpeedErrorRow> rows =
         measureSpeedAgainstError(volume, o, [&](const std::string& s) { said.insert(s); });
-    ASSERT_EQ(rows.size(), 9u * 3 + 4);  // 9 bounds x 1-3 nodes, then 32-256 spheres
-    EXPECT_EQ(rows.front().setting, "1 Gauss node/cell, bound 0.25");
-    EXPECT_EQ(rows[26].setting, "3 Gauss nodes/cell, bound 64");
+    // 3 thresholds x 9 bounds x 1-3 nodes, then 32-256 spheres.
+    ASSERT_EQ(rows.size(), 3u * 9 * 3 + 4);
+    EXPECT_EQ(rows.front().setting, "1 Gauss node/cell, bound 0.25, T<0.0001");
+    EXPECT_EQ(rows[26].setting, "3 Gauss nodes/cell, bound 64, T<0.0001");
+    EXPECT_EQ(rows[80].setting, "3 Gauss nodes/cell, bound 64, T<0.01");
     EXPECT_EQ(rows.back().setting, "256 spheres/level");
     for (const SpeedErrorRow& r : rows) {
         EXPECT_TRUE(std::isfinite(r.msPerEnvmap) && r.msPerEnvmap > 0.0) << r.setting;
         EXPECT_TRUE(std::isfinite(r.relativeRmse)) << r.setting;
     }
-    // Errors belong to their rows: the paper's spheres converge as they get more, and our
-    // default (2 nodes, bound 1) beats its coarsest setting.
-    EXPECT_GT(rows[27].relativeRmse, rows[30].relativeRmse);
-    EXPECT_LT(rows[2 * 3 + 1].relativeRmse, rows[27].relativeRmse);
+    // Errors belong to their rows: the paper's spheres converge as they get more, our
+    // default (2 nodes, bound 1, T<1e-4) beats its coarsest setting, and stopping rays at
+    // T<0.01 instead of 1e-4 loses light behind the first surfaces.
+    const std::size_t firstSpheres = 81, defaultRow = 2 * 3 + 1, defaultAtLooseThreshold = 54 + 2 * 3 + 1;
+    EXPECT_GT(rows[firstSpheres].relativeRmse, rows[firstSpheres + 3].relativeRmse);
+    EXPECT_LT(rows[defaultRow].relativeRmse, rows[firstSpheres].relativeRmse);
+    ASSERT_EQ(rows[defaultAtLooseThreshold].setting, "2 Gauss nodes/cell, bound 1, T<0.01");
+    EXPECT_GT(rows[defaultAtLooseThreshold].relativeRmse, rows[defaultRow].relativeRmse);
     // Both rounds ran and said so.
-    EXPECT_TRUE(said.count("round 1/2: ours-cells, 2 Gauss nodes/cell, bound 1"));
+    EXPECT_TRUE(said.count("round 1/2: ours-cells, 2 Gauss nodes/cell, bound 1, T<0.0001"));
     EXPECT_TRUE(said.count("round 2/2: paper-spheres, 256 spheres/level"));
+}
+
+// The storage target read from known rows: the default bound's row is judged, on disk and in
+// memory, against a tenth of the dense size, and its loss against ground truth.
+TEST(MemoryTarget, JudgesTheDefaultBoundsRow) {
+    MemoryErrorRow unpruned, looser, atDefault;
+    unpruned.setting = "unpruned", unpruned.tau = -1, unpruned.psnrGroundTruth = 20.0;
+    looser.setting = "tau 0.1", looser.tau = 0.1, looser.diskBytesHalf = 1, looser.memoryBytes = 1;
+    atDefault.setting = "tau 0.0001", atDefault.tau = 1e-4;
+    atDefault.diskBytesHalf = 50'000, atDefault.memoryBytes = 300'000;  // 5% and 30% of 1 MB
+    atDefault.psnrGroundTruth = 19.95, atDefault.lossDb = 0.05;
+    const std::vector<MemoryErrorRow> rows{unpruned, atDefault, looser};
+    std::string md = memoryTargetMarkdown(rows, 1e6, 1e-4);
+    EXPECT_NE(md.find("on disk (Blosc, half precision): 0.05 MB, 5.0% of dense: **met**"), std::string::npos) << md;
+    EXPECT_NE(md.find("in memory (OpenVDB grids): 0.3 MB, 30.0% of dense: **not met**"), std::string::npos) << md;
+    EXPECT_NE(md.find("0.050 dB lost: **met**"), std::string::npos) << md;
+    // Losing more than 0.1 dB fails the target; without ground truth it is not judged.
+    std::vector<MemoryErrorRow> lossy = rows;
+    lossy[1].lossDb = 0.2;
+    EXPECT_NE(memoryTargetMarkdown(lossy, 1e6, 1e-4).find("0.200 dB lost: **not met**"), std::string::npos);
+    lossy[1].psnrGroundTruth = -1;
+    EXPECT_NE(memoryTargetMarkdown(lossy, 1e6, 1e-4).find("not measured without ground truth"), std::string::npos);
+    // A run without a row at the bound says so.
+    EXPECT_NE(memoryTargetMarkdown(rows, 1e6, 1e-3).find("not measured: this run has no row at that bound"),
+              std::string::npos);
 }
 
 }  // namespace

@@ -1,0 +1,124 @@
+#!/usr/bin/env bash
+# Issue 7's figures in one command: speed against error and memory against error on three
+# volumes, and the targets read from those runs.
+#
+#   bash scripts/performance_study.sh [--quick] [--docs] [OUT]      (OUT default out/performance)
+#
+# Volumes (made under OUT unless already there):
+#   oracle     the true light of synthetic test example 000001 (`synth --split test --seed 0
+#              --count 2`, then `oracle`), 5 x 64^3, with ground-truth envmaps;
+#   example    the bundled procedural example room (`make-example`), 5 x 64^3;
+#   predicted  the bundled model's prediction for data/demo_pair (4 x 16^3 fog), with the pair's
+#              ground-truth envmaps; skipped, with a note, in a build without lighthouse-net.
+# Per volume: `bench-envmap` (OUT/<volume>/speed/speed_error.{csv,md,svg}) and `bench-sparsity`
+# (OUT/<volume>/memory/memory_error.{csv,md,svg}, memory_breakdown.{csv,md}). Then
+# OUT/summary.md: the machine, the commit, each run's targets and the plots; it is printed too.
+#
+#   --quick   small envmaps (60x30), 2 points, 1 timing round, two sparsity bounds: checks that
+#             everything runs (a few minutes); its times do not measure the targets.
+#   --docs    copy the plots over the README's and docs/performance.md's (docs/images/).
+#
+# The full run takes about 15 minutes on this 2-core machine. Time only on an otherwise idle
+# machine: every timing is compared within its own run, but a busy machine slows some
+# methods more than others. $LIGHTHOUSE (default build/cli/lighthouse) runs every command.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+quick=0 docs=0 out=
+for arg in "$@"; do
+  case "$arg" in
+    --quick) quick=1 ;;
+    --docs) docs=1 ;;
+    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -*) echo "performance_study.sh: error: unknown option '$arg' (see --help)" >&2; exit 2 ;;
+    *) [ -z "$out" ] || { echo "performance_study.sh: error: one output directory only" >&2; exit 2; }
+       out=$arg ;;
+  esac
+done
+out=${out:-out/performance}
+bin=${LIGHTHOUSE:-build/cli/lighthouse}
+[ -x "$bin" ] || { echo "performance_study.sh: error: $bin not found: build first (bash scripts/build.sh)" >&2; exit 1; }
+
+if [ "$quick" = 1 ]; then
+  speed_args=(--points 2 --repeats 1 --size 60x30)
+  memory_args=(--points 1 --size 60x30 --taus 1e-4,1e-1)
+else
+  speed_args=(--points 8 --repeats 10)
+  memory_args=()
+fi
+step=0
+say() { step=$((step + 1)); echo "==> [$step] $*" >&2; }
+
+mkdir -p "$out"
+say "volumes in $out/"
+if [ ! -f "$out/oracle.vdb" ]; then
+  [ -f "$out/test/manifest.json" ] || "$bin" synth --split test --seed 0 --count 2 --out "$out/test" >&2
+  "$bin" oracle "$out/test/000001" -o "$out/oracle.vdb" >&2
+fi
+[ -f "$out/example.vdb" ] || "$bin" make-example -o "$out/example.vdb" >&2
+volumes=(oracle example)
+datasets=("$out/test/000001" "")
+if "$bin" predict --help >/dev/null 2>&1; then
+  pair=data/demo_pair  # the same command as scripts/demo.sh
+  [ -f "$out/predicted.vdb" ] || "$bin" predict --ref "$pair/ref.png" --src "$pair/src.png" \
+    --cameras "$pair/cameras.json" -o "$out/predicted.vdb" >&2
+  volumes+=(predicted)
+  datasets+=("$pair")
+else
+  echo "note: this build has no prediction network (lighthouse-net): no predicted volume" >&2
+fi
+
+for i in "${!volumes[@]}"; do
+  v=${volumes[$i]}
+  # The oracle gets every method; the others the reference check, ours and the paper's.
+  methods=()
+  [ "$v" = oracle ] || methods=(--methods reference-check ours-cells paper-spheres)
+  say "speed against error: $v"
+  "$bin" bench-envmap "$out/$v.vdb" "${speed_args[@]}" "${methods[@]}" --out "$out/$v/speed" > /dev/null
+  say "memory against error: $v"
+  dataset=()
+  [ -z "${datasets[$i]}" ] || dataset=(--dataset "${datasets[$i]}")
+  "$bin" bench-sparsity "$out/$v.vdb" "${memory_args[@]}" "${dataset[@]}" --out "$out/$v/memory" > /dev/null
+done
+
+# The summary: every run's own reading of the targets, then where the tables and plots are.
+say "summary: $out/summary.md"
+section() {  # the lines of file $1 from the heading that starts with $2 to the end
+  sed -n "/^## $2/,\$p" "$1"
+}
+{
+  echo "# Issue 7: speed, error and memory (scripts/performance_study.sh)"
+  echo
+  echo "* command: \`bash scripts/performance_study.sh$([ "$quick" = 1 ] && echo " --quick")\`"
+  echo "* when: $(date -u '+%Y-%m-%d %H:%M UTC'); commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "* machine: $(nproc) cores, $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)"
+  [ "$quick" = 0 ] || echo "* **quick run** (60x30 envmaps, 2 points, 1 round): its times do not measure the targets"
+  for v in "${volumes[@]}"; do
+    echo
+    echo "# $v ($("$bin" info "$out/$v.vdb" | head -n 1 | sed 's/^[^:]*: //'))"
+    echo
+    section "$out/$v/speed/speed_error.md" "Against the targets" | sed 's/^## /### Speed: /'
+    echo
+    echo "![speed against error, $v]($v/speed/speed_error.svg)"
+    echo
+    section "$out/$v/memory/memory_error.md" "Against the target" | sed 's/^## /### Memory: /'
+    echo
+    echo "![memory against error, $v]($v/memory/memory_error.svg)"
+    echo
+    echo "Every row: [$v/speed/speed_error.md]($v/speed/speed_error.md), [$v/memory/memory_error.md]($v/memory/memory_error.md), [$v/memory/memory_breakdown.md]($v/memory/memory_breakdown.md)."
+  done
+} > "$out/summary.md.tmp"
+mv "$out/summary.md.tmp" "$out/summary.md"
+
+if [ "$docs" = 1 ]; then
+  say "plots -> docs/images/"
+  cp "$out/oracle/speed/speed_error.svg" docs/images/speed_error.svg
+  cp "$out/example/speed/speed_error.svg" docs/images/speed_error_example.svg
+  cp "$out/oracle/memory/memory_error.svg" docs/images/memory_error_oracle.svg
+  cp "$out/example/memory/memory_error.svg" docs/images/memory_error_example.svg
+  if [ -d "$out/predicted" ]; then
+    cp "$out/predicted/speed/speed_error.svg" docs/images/speed_error_predicted.svg
+    cp "$out/predicted/memory/memory_error.svg" docs/images/memory_error_predicted.svg
+  fi
+fi
+cat "$out/summary.md"
