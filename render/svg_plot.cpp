@@ -37,6 +37,21 @@ struct AxisMap {
     }
 };
 
+// Text as XML character data: a tooltip such as "T<0.01" must not open a tag (an SVG that
+// is not well-formed XML is not drawn at all by browsers).
+std::string xmlEscaped(const std::string& text) {
+    std::string out;
+    for (const char c : text) switch (c) {
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '&': out += "&amp;"; break;
+            case '\'': out += "&apos;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    return out;
+}
+
 }  // namespace
 
 std::string svgPlot(const PlotAxis& xAxis, const PlotAxis& yAxis, const std::vector<PlotSeries>& series,
@@ -64,10 +79,10 @@ std::string svgPlot(const PlotAxis& xAxis, const PlotAxis& yAxis, const std::vec
     for (const auto& m : markers)
         s << "<line x1='" << px(m.x) << "' y1='" << T << "' x2='" << px(m.x) << "' y2='" << H - B
           << "' stroke='#888' stroke-dasharray='4 3'/><text x='" << px(m.x) + 4 << "' y='" << T + 12
-          << "' fill='#555'>" << m.label << "</text>\n";
-    s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>" << xAxis.label << "</text>\n"
+          << "' fill='#555'>" << xmlEscaped(m.label) << "</text>\n";
+    s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>" << xmlEscaped(xAxis.label) << "</text>\n"
       << "<text x='16' y='" << (T + H - B) / 2 << "' transform='rotate(-90 16 " << (T + H - B) / 2
-      << ")' text-anchor='middle'>" << yAxis.label << "</text>\n";
+      << ")' text-anchor='middle'>" << xmlEscaped(yAxis.label) << "</text>\n";
     int legend = 0;
     for (const auto& sr : series) {
         if (sr.points.empty()) continue;
@@ -78,9 +93,9 @@ std::string svgPlot(const PlotAxis& xAxis, const PlotAxis& yAxis, const std::vec
         }
         for (const auto& p : sr.points)
             s << "<circle cx='" << px(p.x) << "' cy='" << py(p.y) << "' r='4' fill='" << sr.colour << "'><title>"
-              << p.tooltip << "</title></circle>\n";
+              << xmlEscaped(p.tooltip) << "</title></circle>\n";
         s << "<text x='" << W - R + 12 << "' y='" << T + 20 + 18 * legend++ << "' fill='" << sr.colour << "'>"
-          << sr.name << "</text>\n";
+          << xmlEscaped(sr.name) << "</text>\n";
     }
     s << "</svg>\n";
     return s.str();

@@ -41,5 +41,18 @@ TEST(SvgPlot, LogAxisOrdersPointsAndFloorsZero) {
     EXPECT_EQ(svg.find("inf"), std::string::npos);
 }
 
+// Text is character data: "T<0.01" in a tooltip or "<" and "&" in a label must not break the
+// XML (browsers draw nothing of an SVG that is not well-formed).
+TEST(SvgPlot, TextIsEscaped) {
+    PlotSeries s{"ours & theirs", "red", {{10, 1e-3, "step 0.5, T<0.01"}}, false};
+    const std::string svg = svgPlot({"ms <per envmap>", true}, {"rmse", true, 10, 1e-6}, {s}, {{20, "a'b"}});
+    EXPECT_NE(svg.find("<title>step 0.5, T&lt;0.01</title>"), std::string::npos) << svg;
+    EXPECT_NE(svg.find(">ours &amp; theirs<"), std::string::npos) << svg;
+    EXPECT_NE(svg.find(">ms &lt;per envmap&gt;<"), std::string::npos) << svg;
+    EXPECT_NE(svg.find(">a&apos;b<"), std::string::npos) << svg;
+    // Outside tags, no '<' is followed by anything but a tag name or '/'.
+    EXPECT_FALSE(std::regex_search(svg, std::regex("<[^a-z/]"))) << svg;
+}
+
 }  // namespace
 }  // namespace lh

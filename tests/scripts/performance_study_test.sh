@@ -24,6 +24,9 @@ for v in "${volumes[@]}"; do
   grep -q "^# $v (" "$summary" || fail "no section for $v"
   grep -q "(\(.*/\)\{0,1\}$v/speed/speed_error.svg)" "$summary" || fail "no speed plot of $v in the summary"
 done
+# The plots are well-formed XML (browsers draw nothing of an SVG that is not).
+/usr/bin/python3 -c 'import sys, xml.etree.ElementTree as E; [E.parse(f) for f in sys.argv[1:]]' \
+  "$scratch"/*/speed/speed_error.svg "$scratch"/*/memory/memory_error.svg || fail "a plot is not well-formed XML"
 # Each volume: the speed targets (not judged at 60x30) and the storage target (judged).
 [ "$(grep -c '^\* not judged: this run rendered 60x30 envmaps' "$summary")" = "${#volumes[@]}" ] ||
   fail "the speed targets are not reported (as not judged) for every volume"
