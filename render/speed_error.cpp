@@ -169,16 +169,18 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
 
 namespace {
 
-// Time against error, log-log, one series per method.
+// Time against error, log-log, one series per method, each with a curve through its settings
+// worth choosing (no other of its settings is both faster and more accurate).
 std::string speedErrorSvg(const std::vector<SpeedErrorRow>& rows) {
     const std::map<std::string, std::string> colours = {
         {"ours-steps", "#d62728"}, {"ours-cells", "#9467bd"}, {"openvdb-fixed-step", "#1f77b4"},
         {"paper-spheres", "#2ca02c"}, {"reference-check", "#7f7f7f"}};
     std::vector<PlotSeries> series;
     for (const auto& [method, colour] : colours) {
-        PlotSeries sr{method, colour, {}, false};
+        PlotSeries sr{method, colour, {}, false, {}};
         for (const auto& r : rows)
             if (r.method == method) sr.points.push_back({r.msPerEnvmap, r.relativeRmse, r.method + ": " + r.setting});
+        sr.curve = lowerLeftFront(sr.points);
         series.push_back(sr);
     }
     return svgPlot({"ms per 240x120 envmap (2 cores)", true, 10, 1e-3},
@@ -360,7 +362,7 @@ namespace {
 // Bytes (log) against PSNR vs the unpruned envmaps (linear, 100 = identical), in memory and
 // on disk, with the target (a tenth of dense storage) marked.
 std::string memorySvg(const std::vector<MemoryErrorRow>& rows, double denseBytes) {
-    PlotSeries memory{"in memory", "#d62728", {}, true}, disk{"on disk (Blosc, half)", "#1f77b4", {}, true};
+    PlotSeries memory{"in memory", "#d62728", {}, true, {}}, disk{"on disk (Blosc, half)", "#1f77b4", {}, true, {}};
     for (const auto& r : rows) {
         memory.points.push_back({double(r.memoryBytes), r.psnrVsUnpruned, r.setting});
         disk.points.push_back({double(r.diskBytesHalf), r.psnrVsUnpruned, r.setting});

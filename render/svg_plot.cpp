@@ -54,6 +54,16 @@ std::string xmlEscaped(const std::string& text) {
 
 }  // namespace
 
+std::vector<PlotPoint> lowerLeftFront(std::vector<PlotPoint> points) {
+    std::stable_sort(points.begin(), points.end(), [](const PlotPoint& a, const PlotPoint& b) {
+        return a.x < b.x || (a.x == b.x && a.y < b.y);
+    });
+    std::vector<PlotPoint> front;
+    for (const PlotPoint& p : points)
+        if (front.empty() || p.y < front.back().y) front.push_back(p);
+    return front;
+}
+
 std::string svgPlot(const PlotAxis& xAxis, const PlotAxis& yAxis, const std::vector<PlotSeries>& series,
                     const std::vector<PlotMarker>& markers) {
     double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
@@ -89,6 +99,11 @@ std::string svgPlot(const PlotAxis& xAxis, const PlotAxis& yAxis, const std::vec
         if (sr.joined) {
             s << "<polyline fill='none' stroke='" << sr.colour << "' points='";
             for (const auto& p : sr.points) s << px(p.x) << "," << py(p.y) << " ";
+            s << "'/>\n";
+        }
+        if (sr.curve.size() > 1) {
+            s << "<polyline fill='none' stroke='" << sr.colour << "' points='";
+            for (const auto& p : sr.curve) s << px(p.x) << "," << py(p.y) << " ";
             s << "'/>\n";
         }
         for (const auto& p : sr.points)

@@ -25,7 +25,12 @@ struct PlotSeries {
     std::string colour;  // CSS colour
     std::vector<PlotPoint> points;
     bool joined = false;  // draw a polyline through the points in order
+    std::vector<PlotPoint> curve;  // drawn as a polyline (in order) beside the points
 };
+
+// The points that no other point beats on both axes (smaller x and smaller y: for time
+// against error, the settings worth choosing), ordered by x. Ties in x keep the smaller y.
+std::vector<PlotPoint> lowerLeftFront(std::vector<PlotPoint> points);
 
 // A vertical dashed marker line with a label (e.g. "dense / 10").
 struct PlotMarker {

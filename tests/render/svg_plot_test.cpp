@@ -20,7 +20,7 @@ std::vector<double> drawnXs(const std::string& svg) {
 TEST(SvgPlot, MarkersOutsideTheDataWidenTheAxis) {
     // Data between 1e5 and 1e6 bytes, a target marker at 2e4: the marker must be in the frame
     // (it used to fall off the left edge).
-    PlotSeries s{"in memory", "red", {{1e5, 90, "a"}, {1e6, 100, "b"}}, true};
+    PlotSeries s{"in memory", "red", {{1e5, 90, "a"}, {1e6, 100, "b"}}, true, {}};
     const std::string svg = svgPlot({"bytes", true}, {"dB", false, 10}, {s}, {{2e4, "dense / 10"}});
     const std::vector<double> xs = drawnXs(svg);
     ASSERT_EQ(xs.size(), 3u);
@@ -32,7 +32,7 @@ TEST(SvgPlot, MarkersOutsideTheDataWidenTheAxis) {
 }
 
 TEST(SvgPlot, LogAxisOrdersPointsAndFloorsZero) {
-    PlotSeries s{"ours", "red", {{10, 1e-3, "a"}, {100, 0.0, "zero error"}}, false};
+    PlotSeries s{"ours", "red", {{10, 1e-3, "a"}, {100, 0.0, "zero error"}}, false, {}};
     const std::string svg = svgPlot({"ms", true}, {"rmse", true, 10, 1e-6}, {s});
     const std::vector<double> xs = drawnXs(svg);
     ASSERT_EQ(xs.size(), 2u);
@@ -41,10 +41,25 @@ TEST(SvgPlot, LogAxisOrdersPointsAndFloorsZero) {
     EXPECT_EQ(svg.find("inf"), std::string::npos);
 }
 
+// Settings worth choosing: nothing else is both faster and more accurate.
+TEST(SvgPlot, LowerLeftFrontKeepsWhatNothingBeats) {
+    const std::vector<PlotPoint> front = lowerLeftFront({{5, 0.1, "a"}, {2, 1.0, "b"}, {3, 2.0, "beaten by b"},
+                                                        {5, 0.05, "c"}, {9, 0.07, "beaten by c"}, {10, 0.01, "d"}});
+    std::vector<std::string> names;
+    for (const PlotPoint& p : front) names.push_back(p.tooltip);
+    EXPECT_EQ(names, (std::vector<std::string>{"b", "c", "d"}));
+    // The curve is drawn as a polyline, the points as circles.
+    PlotSeries s{"ours", "red", {{2, 1.0, "b"}, {3, 2.0, "x"}, {10, 0.01, "d"}}, false, {}};
+    s.curve = lowerLeftFront(s.points);
+    const std::string svg = svgPlot({"ms", true}, {"rmse", true}, {s});
+    EXPECT_EQ(drawnXs(svg).size(), 3u);
+    EXPECT_NE(svg.find("<polyline"), std::string::npos);
+}
+
 // Text is character data: "T<0.01" in a tooltip or "<" and "&" in a label must not break the
 // XML (browsers draw nothing of an SVG that is not well-formed).
 TEST(SvgPlot, TextIsEscaped) {
-    PlotSeries s{"ours & theirs", "red", {{10, 1e-3, "step 0.5, T<0.01"}}, false};
+    PlotSeries s{"ours & theirs", "red", {{10, 1e-3, "step 0.5, T<0.01"}}, false, {}};
     const std::string svg = svgPlot({"ms <per envmap>", true}, {"rmse", true, 10, 1e-6}, {s}, {{20, "a'b"}});
     EXPECT_NE(svg.find("<title>step 0.5, T&lt;0.01</title>"), std::string::npos) << svg;
     EXPECT_NE(svg.find(">ours &amp; theirs<"), std::string::npos) << svg;
