@@ -348,9 +348,9 @@ RayResult marchPieces(const RenderVolume& volume, const RenderVolume::RayOrigin&
 
 }  // namespace
 
-// The marcher, walk and quadrature inlined, is compiled for x86-64-v3 and for the baseline
-// (core/cpu_dispatch.h). Measured: 7.6% fewer instructions and ~7% less time per envmap
-// (docs/performance.md).
+// The marcher, walk and quadrature inlined, is compiled for x86-64-v4, x86-64-v3 and the
+// baseline (core/cpu_dispatch.h). Measured: v3 7.6% fewer instructions and ~7% less time per
+// envmap than the baseline, v4 1-4.5% less time than v3 (docs/performance.md).
 LH_PER_CPU_FLATTENED
 RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin, const Vec3d& dir,
                    const MarchOptions& options, double tStart) {

@@ -429,7 +429,8 @@ void writeMemoryErrorReport(const std::vector<MemoryErrorRow>& rows, const std::
                       r.relativeRmse, r.msPerEnvmap);
         md << line;
         if (gt) {
-            std::snprintf(line, sizeof line, " %.3f | %.3f |", r.psnrGroundTruth, r.lossDb);
+            // A loss that rounds to zero prints as 0.000, not -0.000.
+            std::snprintf(line, sizeof line, " %.3f | %.3f |", r.psnrGroundTruth, std::abs(r.lossDb) < 5e-4 ? 0.0 : r.lossDb);
             md << line;
         }
         md << "\n";

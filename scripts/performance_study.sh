@@ -15,10 +15,11 @@
 # OUT/summary.md: the machine, the commit, each run's targets and the plots; it is printed too.
 #
 #   --quick   small envmaps (60x30), 2 points, 1 timing round, two sparsity bounds: checks that
-#             everything runs (a few minutes); its times do not measure the targets.
-#   --docs    copy the plots over the README's and docs/performance.md's (docs/images/).
+#             everything runs (15 s); its times do not measure the targets.
+#   --docs    also copy the reports (summary.md, every table, CSV and plot) to docs/study/,
+#             which the README and docs/performance.md show.
 #
-# The full run takes about 15 minutes on this 2-core machine. Time only on an otherwise idle
+# The full run takes about 7 minutes on this 2-core machine. Time only on an otherwise idle
 # machine: every timing is compared within its own run, but a busy machine slows some
 # methods more than others. $LIGHTHOUSE (default build/cli/lighthouse) runs every command.
 set -euo pipefail
@@ -35,6 +36,8 @@ for arg in "$@"; do
        out=$arg ;;
   esac
 done
+[ "$quick" = 0 ] || [ "$docs" = 0 ] ||
+  { echo "performance_study.sh: error: --docs keeps full runs only (drop --quick)" >&2; exit 2; }
 out=${out:-out/performance}
 bin=${LIGHTHOUSE:-build/cli/lighthouse}
 [ -x "$bin" ] || { echo "performance_study.sh: error: $bin not found: build first (bash scripts/build.sh)" >&2; exit 1; }
@@ -90,7 +93,7 @@ section() {  # the lines of file $1 from the heading that starts with $2 to the 
   echo "# Issue 7: speed, error and memory (scripts/performance_study.sh)"
   echo
   echo "* command: \`bash scripts/performance_study.sh$([ "$quick" = 1 ] && echo " --quick")\`"
-  echo "* when: $(date -u '+%Y-%m-%d %H:%M UTC'); commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "* when: $(date -u '+%Y-%m-%d %H:%M UTC'); commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo ', with uncommitted changes')"
   echo "* machine: $(nproc) cores, $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)"
   [ "$quick" = 0 ] || echo "* **quick run** (60x30 envmaps, 2 points, 1 round): its times do not measure the targets"
   for v in "${volumes[@]}"; do
@@ -111,14 +114,15 @@ section() {  # the lines of file $1 from the heading that starts with $2 to the 
 mv "$out/summary.md.tmp" "$out/summary.md"
 
 if [ "$docs" = 1 ]; then
-  say "plots -> docs/images/"
-  cp "$out/oracle/speed/speed_error.svg" docs/images/speed_error.svg
-  cp "$out/example/speed/speed_error.svg" docs/images/speed_error_example.svg
-  cp "$out/oracle/memory/memory_error.svg" docs/images/memory_error_oracle.svg
-  cp "$out/example/memory/memory_error.svg" docs/images/memory_error_example.svg
-  if [ -d "$out/predicted" ]; then
-    cp "$out/predicted/speed/speed_error.svg" docs/images/speed_error_predicted.svg
-    cp "$out/predicted/memory/memory_error.svg" docs/images/memory_error_predicted.svg
-  fi
+  say "reports -> docs/study/"
+  rm -rf docs/study.tmp
+  for v in "${volumes[@]}"; do
+    for part in speed memory; do
+      mkdir -p "docs/study.tmp/$v/$part"
+      cp "$out/$v/$part"/*.md "$out/$v/$part"/*.csv "$out/$v/$part"/*.svg "docs/study.tmp/$v/$part/"
+    done
+  done
+  cp "$out/summary.md" docs/study.tmp/
+  rm -rf docs/study && mv docs/study.tmp docs/study
 fi
 cat "$out/summary.md"

@@ -40,6 +40,8 @@ grep -q 'quick run' "$summary" || fail "the quick run is not marked as such"
 if LIGHTHOUSE=$bin bash "$script" --no-such-option 2> "$scratch.err"; then fail "an unknown option was accepted"; fi
 [ "$(wc -l < "$scratch.err")" = 1 ] && grep -q "unknown option '--no-such-option'" "$scratch.err" ||
   fail "unknown option: $(cat "$scratch.err")"
+if LIGHTHOUSE=$bin bash "$script" --quick --docs "$scratch/y" 2> "$scratch.err"; then fail "--quick --docs was accepted"; fi
+grep -q "docs keeps full runs only" "$scratch.err" || fail "--quick --docs: $(cat "$scratch.err")"
 if LIGHTHOUSE=/no/such/lighthouse bash "$script" --quick "$scratch/x" 2> "$scratch.err"; then fail "a missing binary was accepted"; fi
 grep -q "/no/such/lighthouse not found" "$scratch.err" || fail "missing binary: $(cat "$scratch.err")"
 [ ! -e "$scratch/x" ] || fail "a failed start left an output directory"
