@@ -93,19 +93,16 @@ std::string svgPlot(const PlotAxis& xAxis, const PlotAxis& yAxis, const std::vec
     s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>" << xmlEscaped(xAxis.label) << "</text>\n"
       << "<text x='16' y='" << (T + H - B) / 2 << "' transform='rotate(-90 16 " << (T + H - B) / 2
       << ")' text-anchor='middle'>" << xmlEscaped(yAxis.label) << "</text>\n";
+    const auto polyline = [&](const std::vector<PlotPoint>& points, const std::string& colour) {
+        s << "<polyline fill='none' stroke='" << colour << "' points='";
+        for (const auto& p : points) s << px(p.x) << "," << py(p.y) << " ";
+        s << "'/>\n";
+    };
     int legend = 0;
     for (const auto& sr : series) {
         if (sr.points.empty()) continue;
-        if (sr.joined) {
-            s << "<polyline fill='none' stroke='" << sr.colour << "' points='";
-            for (const auto& p : sr.points) s << px(p.x) << "," << py(p.y) << " ";
-            s << "'/>\n";
-        }
-        if (sr.curve.size() > 1) {
-            s << "<polyline fill='none' stroke='" << sr.colour << "' points='";
-            for (const auto& p : sr.curve) s << px(p.x) << "," << py(p.y) << " ";
-            s << "'/>\n";
-        }
+        if (sr.joined) polyline(sr.points, sr.colour);
+        if (sr.curve.size() > 1) polyline(sr.curve, sr.colour);
         for (const auto& p : sr.points)
             s << "<circle cx='" << px(p.x) << "' cy='" << py(p.y) << "' r='4' fill='" << sr.colour << "'><title>"
               << xmlEscaped(p.tooltip) << "</title></circle>\n";
