@@ -6,12 +6,15 @@
 #include <openvdb/openvdb.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <cstring>
 #include <fcntl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 
 namespace lh {
@@ -35,13 +38,14 @@ std::size_t halfPhysicalMemory() {
     if (devNull >= 0) ::dup2(devNull, STDERR_FILENO);
     rlimit limit{cap, cap};
     ::setrlimit(RLIMIT_AS, &limit);
-    int code = kReadOk;
+    int code = kReadFailed;
     try {
         openvdb::initialize();
         openvdb::io::File file(path);
         file.open(false);
-        file.getGrids();
-        file.close();
+        const openvdb::GridPtrVecPtr grids = file.getGrids();
+        // Exit with the grids alive: their destructors would run TBB (safe_read.h).
+        ::_exit(kReadOk);
     } catch (const std::bad_alloc&) {
         code = kOutOfMemory;
     } catch (...) {
@@ -60,18 +64,44 @@ std::size_t defaultCap(const std::string& path) {
     return std::clamp(wanted, std::size_t(2) << 30, std::max(halfPhysicalMemory(), std::size_t(2) << 30));
 }
 
-}  // namespace
+// The trial read's deadline: a minute, and a second more per 10 MB of file.
+double defaultTimeout(const std::string& path) {
+    std::error_code ec;
+    const std::size_t bytes = std::filesystem::file_size(path, ec);
+    return 60.0 + (ec ? 0.0 : double(bytes) / 10e6);
+}
 
-void probeVdbReadable(const std::string& path, std::size_t memoryCapBytes) {
-    const std::size_t cap = memoryCapBytes ? memoryCapBytes : defaultCap(path);
-    std::fflush(nullptr);  // the child must not flush the parent's buffered output again
-    const pid_t pid = ::fork();
-    if (pid < 0) return;  // cannot isolate: fall back to reading in-process
-    if (pid == 0) childRead(path, cap);
-    int status = 0;
+// Waits for the child until `timeoutSeconds`; false (the child killed and reaped) if it was
+// still running then.
+bool waitForChild(pid_t pid, double timeoutSeconds, int& status) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
+    auto pause = std::chrono::microseconds(200);  // first reads take milliseconds; back off to 50 ms
+    for (;;) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) return true;
+        if (done < 0 && errno != EINTR) return true;  // no such child: nothing to wait for
+        if (std::chrono::steady_clock::now() >= deadline) break;
+        std::this_thread::sleep_for(pause);
+        pause = std::min(pause * 2, std::chrono::microseconds(50000));
+    }
+    ::kill(pid, SIGKILL);
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
-    if (WIFEXITED(status) && WEXITSTATUS(status) == kReadOk) return;
+    return false;
+}
+
+}  // namespace
+
+ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes, double timeoutSeconds) {
+    const std::size_t cap = memoryCapBytes ? memoryCapBytes : defaultCap(path);
+    const double timeout = timeoutSeconds > 0 ? timeoutSeconds : defaultTimeout(path);
+    std::fflush(nullptr);  // the child must not flush the parent's buffered output again
+    const pid_t pid = ::fork();
+    if (pid < 0) return ProbeResult::NotIsolated;  // cannot isolate: the caller reads in-process
+    if (pid == 0) childRead(path, cap);
+    int status = 0;
+    if (!waitForChild(pid, timeout, status)) return ProbeResult::NotIsolated;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kReadOk) return ProbeResult::Read;
     std::string why;
     if (WIFSIGNALED(status))
         why = "OpenVDB crashed reading it (" + std::string(::strsignal(WTERMSIG(status))) + ")";

@@ -10,9 +10,23 @@
 
 namespace lh {
 
+// What a trial read showed.
+enum class ProbeResult {
+    Read,         // the child read the file cleanly
+    NotIsolated,  // no verdict (the child could not be started, or did not finish in time):
+                  // the caller reads the file in-process, as it would without the probe
+};
+
 // Throws FileError naming `path` if a trial read in a child process crashes, runs out of its
 // memory cap, or fails. Costs one extra read of the file. `memoryCapBytes` = 0 picks 256x the
-// file size, clamped to [2 GiB, half the physical memory].
-void probeVdbReadable(const std::string& path, std::size_t memoryCapBytes = 0);
+// file size, clamped to [2 GiB, half the physical memory]. `timeoutSeconds` = 0 picks 60 s
+// plus 1 s per 10 MB of file; a child still reading then is killed (NotIsolated).
+//
+// The child is a fork of a process that may have TBB worker threads, which do not exist in
+// the child: it reads serially and never frees the grids (a tree's destructor runs a TBB
+// parallel_for, which waited forever there for workers that are gone: `lighthouse import`
+// hung in CI), leaving them to _exit. The deadline keeps any other such wait from hanging
+// the parent.
+ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes = 0, double timeoutSeconds = 0);
 
 }  // namespace lh

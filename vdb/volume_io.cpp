@@ -29,6 +29,8 @@ VdbContents readVdb(const std::string& path) {
     initialiseOpenVdb();
     if (!std::filesystem::exists(path)) throw FileError("'" + path + "' does not exist");
     if (std::filesystem::is_directory(path)) throw FileError("'" + path + "' is a directory, not a .vdb file");
+    // A FIFO or a device would block the read (and its trial read) for ever.
+    if (!std::filesystem::is_regular_file(path)) throw FileError("'" + path + "' is not a regular file");
     probeVdbReadable(path);
     try {
         openvdb::io::File file(path);

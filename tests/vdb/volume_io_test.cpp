@@ -11,6 +11,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace lh {
 namespace {
 
@@ -118,6 +121,16 @@ TEST(VolumeIo, CorruptedFilesFailCleanly) {
         }
     }
     EXPECT_GE(failures, 20);  // at least every truncation is detected
+}
+
+// A FIFO (or a device) is refused before anything reads it: reading one would wait for a
+// writer for ever.
+TEST(VolumeIo, AFifoIsRefusedNotWaitedOn) {
+    const std::string path = tempPath("fifo_" + std::to_string(::getpid()) + ".vdb");
+    fs::remove(path);
+    ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+    expectFileError(path, "not a regular file");
+    fs::remove(path);
 }
 
 TEST(VolumeIo, MissingColorGridNamesTheGrid) {
