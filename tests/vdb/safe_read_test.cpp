@@ -10,8 +10,12 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <thread>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace lh {
 namespace {
@@ -32,9 +36,19 @@ TEST(SafeRead, AGoodFileIsReadInTheChild) {
 }
 
 // A child still reading at its deadline is killed: the caller gets no verdict and reads the
-// file itself, instead of waiting for ever. (0.1 ms: a fork alone takes longer.)
+// file itself, instead of waiting for ever. The child is made to wait for certain: the path is
+// a FIFO nobody writes to, so its open() blocks until the kill. (A tiny deadline on a real
+// file was a race: on CI the child sometimes finished the read first.)
 TEST(SafeRead, AChildPastItsDeadlineIsKilledAndGivesNoVerdict) {
-    EXPECT_EQ(probeVdbReadable(exampleFile(), 0, 1e-4), ProbeResult::NotIsolated);
+    const std::filesystem::path fifo =
+        std::filesystem::temp_directory_path() / ("lh_safe_read_fifo_" + std::to_string(::getpid()));
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << "cannot make a FIFO in the temporary directory";
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_EQ(probeVdbReadable(fifo.string(), 0, 0.3), ProbeResult::NotIsolated);
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::filesystem::remove(fifo);
+    EXPECT_GE(waited, 0.3) << "the probe gave up before its deadline";
     // The next trial read is unaffected.
     EXPECT_EQ(probeVdbReadable(exampleFile()), ProbeResult::Read);
 }
