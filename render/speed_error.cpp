@@ -203,9 +203,7 @@ void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::st
                       r.setting.c_str(), r.msPerEnvmap, 1000 / r.msPerEnvmap, r.relativeRmse, r.psnr);
         md << line;
     }
-    SpeedSummary summary = summarizeSpeedAgainstError(rows);
-    summary.width = width, summary.height = height;
-    md << speedSummaryMarkdown(summary);
+    md << speedSummaryMarkdown(summarizeSpeedAgainstError(rows, SpeedSummary{}.errorBound, {}, width, height));
     const std::filesystem::path dir(directory);
     writeTextFile((dir / "speed_error.csv").string(), csv.str());
     writeTextFile((dir / "speed_error.md").string(), md.str());

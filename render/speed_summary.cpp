@@ -29,10 +29,11 @@ std::string describe(const SpeedErrorRow& r) {
 }  // namespace
 
 SpeedSummary summarizeSpeedAgainstError(const std::vector<SpeedErrorRow>& rows, double errorBound,
-                                        const SpeedTargets& targets) {
+                                        const SpeedTargets& targets, int width, int height) {
     SpeedSummary s;
     s.errorBound = errorBound;
     s.targets = targets;
+    s.width = width, s.height = height;
     s.fastestWithinBound = fastestOursWithin(rows, errorBound);
     const MarchOptions defaults;
     const std::string defaultLabel = cellQuadratureLabel(defaults.cellNodes, defaults.cellRefineBound, defaults.minTransmittance);
@@ -44,8 +45,9 @@ SpeedSummary summarizeSpeedAgainstError(const std::vector<SpeedErrorRow>& rows, 
         s.againstPaper.push_back(c);
         if (r.setting == targets.paperSetting) s.againstPaperSetting = c;
     }
-    s.rateMet = s.fastestWithinBound && 1000 / s.fastestWithinBound->msPerEnvmap >= targets.envmapsPerSecond;
-    s.speedupMet = s.againstPaperSetting && s.againstPaperSetting->speedup >= targets.speedup;
+    const bool judged = width == targets.width && height == targets.height;
+    s.rateMet = judged && s.fastestWithinBound && 1000 / s.fastestWithinBound->msPerEnvmap >= targets.envmapsPerSecond;
+    s.speedupMet = judged && s.againstPaperSetting && s.againstPaperSetting->speedup >= targets.speedup;
     return s;
 }
 

@@ -36,15 +36,17 @@ struct SpeedSummary {
     int width = 240, height = 120;  // envmap size of the run: targets are judged only at theirs
     // The targets read from these rows: our fastest within errorBound renders at least
     // targets.envmapsPerSecond; against targets.paperSetting (when the run has it) our
-    // fastest at equal or lower error is at least targets.speedup times faster.
+    // fastest at equal or lower error is at least targets.speedup times faster. Both false
+    // for a run at another envmap size (not judged).
     bool rateMet = false;
     std::optional<SpeedComparison> againstPaperSetting;
     bool speedupMet = false;
 };
 
-// Ours are the rows whose method starts with "ours-".
+// Ours are the rows whose method starts with "ours-"; `width` x `height` is the size their
+// envmaps were rendered at.
 SpeedSummary summarizeSpeedAgainstError(const std::vector<SpeedErrorRow>& rows, double errorBound = 1e-3,
-                                        const SpeedTargets& targets = {});
+                                        const SpeedTargets& targets = {}, int width = 240, int height = 120);
 
 // The summary as Markdown: a list, a table, and the targets met or not, appended to
 // speed_error.md.
