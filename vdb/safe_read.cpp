@@ -10,6 +10,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <optional>
 #include <cstring>
 #include <fcntl.h>
 #include <sys/resource.h>
@@ -54,22 +55,24 @@ std::size_t halfPhysicalMemory() {
     ::_exit(code);
 }
 
+// The file's size in bytes; nullopt if it cannot be had.
+std::optional<std::size_t> fileSize(const std::string& path) {
+    std::error_code ec;
+    const std::size_t bytes = std::filesystem::file_size(path, ec);
+    if (ec) return std::nullopt;
+    return bytes;
+}
+
 // Address-space cap of the trial read: 256 times the file size (Blosc rarely compresses
 // voxel data beyond 10x), at least 2 GiB (libraries and thread stacks), at most half the RAM.
 // A corrupt size field then fails in about a second instead of filling the machine.
-std::size_t defaultCap(const std::string& path) {
-    std::error_code ec;
-    const std::size_t bytes = std::filesystem::file_size(path, ec);
-    const std::size_t wanted = ec ? halfPhysicalMemory() : bytes * 256;
+std::size_t defaultCap(std::optional<std::size_t> bytes) {
+    const std::size_t wanted = bytes ? *bytes * 256 : halfPhysicalMemory();
     return std::clamp(wanted, std::size_t(2) << 30, std::max(halfPhysicalMemory(), std::size_t(2) << 30));
 }
 
 // The trial read's deadline: a minute, and a second more per 10 MB of file.
-double defaultTimeout(const std::string& path) {
-    std::error_code ec;
-    const std::size_t bytes = std::filesystem::file_size(path, ec);
-    return 60.0 + (ec ? 0.0 : double(bytes) / 10e6);
-}
+double defaultTimeout(std::optional<std::size_t> bytes) { return 60.0 + (bytes ? double(*bytes) / 10e6 : 0.0); }
 
 // Waits for the child until `timeoutSeconds`; false (the child killed and reaped) if it was
 // still running then.
@@ -93,8 +96,9 @@ bool waitForChild(pid_t pid, double timeoutSeconds, int& status) {
 }  // namespace
 
 ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes, double timeoutSeconds) {
-    const std::size_t cap = memoryCapBytes ? memoryCapBytes : defaultCap(path);
-    const double timeout = timeoutSeconds > 0 ? timeoutSeconds : defaultTimeout(path);
+    const std::optional<std::size_t> bytes = fileSize(path);
+    const std::size_t cap = memoryCapBytes ? memoryCapBytes : defaultCap(bytes);
+    const double timeout = timeoutSeconds > 0 ? timeoutSeconds : defaultTimeout(bytes);
     std::fflush(nullptr);  // the child must not flush the parent's buffered output again
     const pid_t pid = ::fork();
     if (pid < 0) return ProbeResult::NotIsolated;  // cannot isolate: the caller reads in-process

@@ -23,10 +23,10 @@ enum class ProbeResult {
 // plus 1 s per 10 MB of file; a child still reading then is killed (NotIsolated).
 //
 // The child is a fork of a process that may have TBB worker threads, which do not exist in
-// the child: it reads serially and never frees the grids (a tree's destructor runs a TBB
-// parallel_for, which waited forever there for workers that are gone: `lighthouse import`
-// hung in CI), leaving them to _exit. The deadline keeps any other such wait from hanging
-// the parent.
+// the child: it never frees the grids it read (a tree's destructor runs a TBB parallel_for,
+// which waited forever there for workers that are gone: `lighthouse import` hung in CI),
+// leaving them to _exit. The deadline keeps any other such wait (in the read itself, say)
+// from hanging the parent.
 ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes = 0, double timeoutSeconds = 0);
 
 }  // namespace lh
