@@ -1,6 +1,7 @@
 // `lighthouse compare PRED.exr GT.exr [--mask M.png]`
 // `lighthouse compare --batch PRED_DIR GT_DIR [--csv out.csv]`
-// The metrics of CONVENTIONS.md ("Metrics"), implemented in render/metrics.h.
+// The metrics of CONVENTIONS.md ("Metrics") and the two HDR ones of docs/metrics.md,
+// implemented in render/metrics.h.
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
@@ -81,23 +82,31 @@ std::string padded(const std::string& text, std::size_t width) {
     return text + std::string(columns < width ? width - columns : 1, ' ');
 }
 
-void printRow(const std::string& label, const std::string& psnr, const std::string& angle) {
-    std::cout << padded(label, 18) << padded(psnr, 22) << angle << "\n";
+// One row of the table: label, then PSNR, RGB angle, log-luminance RMSE, irradiance error.
+// Irradiance integrates the whole sphere, so the observed row has "-" there.
+void printRow(const std::string& label, const std::string& psnr, const std::string& angle,
+              const std::string& logLuminance, const std::string& irradiance) {
+    std::cout << padded(label, 18) << padded(psnr, 22) << padded(angle, 26)
+              << padded(logLuminance, 24) << irradiance << "\n";
 }
 
-void printHeader() { printRow("", "PSNR (dB)", "RGB angular error (deg)"); }
+void printHeader() {
+    printRow("", "PSNR (dB)", "RGB angular error (deg)", "log-luminance RMSE",
+             "irradiance rel. error");
+}
 
 void compareSingle(const CompareOptions& o) {
     const EnvmapMetrics m = compareFiles(o.pred, o.gt, o.mask);
     printHeader();
-    printRow("all content", formatMetric(m.psnrAll), formatMetric(m.angularAll));
+    printRow("all content", formatMetric(m.psnrAll), formatMetric(m.angularAll),
+             formatMetric(m.logLuminanceAll), formatMetric(m.irradianceError));
     if (o.mask.empty()) return;
     if (std::isnan(m.psnrObserved))
         std::cout << padded("observed content", 18) << "no observed pixels in '" << o.mask
                   << "'\n";
     else
         printRow("observed content", formatMetric(m.psnrObserved),
-                 formatMetric(m.angularObserved));
+                 formatMetric(m.angularObserved), formatMetric(m.logLuminanceObserved), "-");
 }
 
 void requireDirectory(const std::string& path, const std::string& what) {
@@ -146,17 +155,20 @@ std::string csvField(const std::string& text) {
     return quoted + "\"";
 }
 
-// One row per envmap; "nan" where a metric has no pixel (no mask), "inf" for identical maps,
-// both of which Python's float() and pandas read.
+// One row per envmap; "nan" where a metric has no pixel (no mask, or a black ground truth
+// for the irradiance error), "inf" for identical maps, both of which Python's float() and
+// pandas read. New columns go at the end, so scripts that index the first five keep working.
 void writeCsv(AtomicOutput& out, const std::vector<EnvmapPair>& pairs,
               const std::vector<EnvmapMetrics>& metrics) {
     {
         std::ofstream file(out.tempPath());
-        file << "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg\n";
+        file << "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,"
+                "log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error\n";
         for (std::size_t i = 0; i < pairs.size(); ++i) {
             const EnvmapMetrics& m = metrics[i];
             file << csvField(pairs[i].relative);
-            for (double v : {m.psnrAll, m.angularAll, m.psnrObserved, m.angularObserved})
+            for (double v : {m.psnrAll, m.angularAll, m.psnrObserved, m.angularObserved,
+                             m.logLuminanceAll, m.logLuminanceObserved, m.irradianceError})
                 file << "," << formatNumber("%.8g", v);
             file << "\n";
         }
@@ -176,16 +188,20 @@ void compareBatch(const CompareOptions& o) {
     const int progressStep = std::max(1, total / 10);
     std::vector<EnvmapMetrics> metrics;
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
+    std::vector<double> logLuminanceAll, logLuminanceObserved, irradiance;
     int withMask = 0;
     for (const EnvmapPair& p : pairs) {
         const EnvmapMetrics m = compareFiles(p.pred, p.gt, p.mask);
         metrics.push_back(m);
         psnrAll.push_back(m.psnrAll);
         angularAll.push_back(m.angularAll);
+        logLuminanceAll.push_back(m.logLuminanceAll);
+        irradiance.push_back(m.irradianceError);
         if (!p.mask.empty()) {
             ++withMask;
             psnrObserved.push_back(m.psnrObserved);
             angularObserved.push_back(m.angularObserved);
+            logLuminanceObserved.push_back(m.logLuminanceObserved);
         }
         const int done = int(metrics.size());
         if (total > 20 && (done % progressStep == 0 || done == total))
@@ -196,10 +212,13 @@ void compareBatch(const CompareOptions& o) {
     std::cout << total << " envmaps, " << withMask << " with an observed mask (mean ± std)\n";
     printHeader();
     printRow("all content", formatMeanStd(meanStd(psnrAll), total),
-             formatMeanStd(meanStd(angularAll), total));
+             formatMeanStd(meanStd(angularAll), total),
+             formatMeanStd(meanStd(logLuminanceAll), total),
+             formatMeanStd(meanStd(irradiance), total));
     if (withMask > 0)
         printRow("observed content", formatMeanStd(meanStd(psnrObserved), withMask),
-                 formatMeanStd(meanStd(angularObserved), withMask));
+                 formatMeanStd(meanStd(angularObserved), withMask),
+                 formatMeanStd(meanStd(logLuminanceObserved), withMask), "-");
     if (csv) std::cout << "per-envmap rows: " << csv->finalPath() << "\n";
 }
 
@@ -208,7 +227,9 @@ void compareBatch(const CompareOptions& o) {
 void addCompareCommand(CLI::App& app) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* cmd = app.add_subcommand(
-        "compare", "PSNR and RGB angular error of predicted envmaps against ground truth");
+        "compare",
+        "PSNR, RGB angular error, log-luminance RMSE and irradiance error of predicted "
+        "envmaps against ground truth (docs/metrics.md)");
     cmd->add_option("pred", o->pred, "Predicted envmap (.exr), or PRED_DIR with --batch")
         ->required();
     cmd->add_option("gt", o->gt, "Ground-truth envmap (.exr), or GT_DIR with --batch")

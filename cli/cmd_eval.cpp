@@ -1,4 +1,5 @@
-// `lighthouse eval --data DIR [--model M] [-o DIR]`: the paper's Table 2 on our test split.
+// `lighthouse eval --data DIR [--model M] [-o DIR]`: the paper's Table 2 on our test split, with
+// the HDR metrics of docs/metrics.md beside it.
 #include "cli/commands.h"
 #include "cli/net_commands.h"
 #include "net/evaluation.h"
@@ -11,7 +12,11 @@ void addEvalCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<net::EvalOptions>();
     o->hdriDir = LIGHTHOUSE_HDRI_DIR;
     CLI::App* cmd = app.add_subcommand("eval", netCommandDescription("eval"));
-    cmd->add_option("--data", o->data, "Test split written by `lighthouse synth --split test`")->required();
+    cmd->add_option("--data", o->data,
+                    "Test split written by `lighthouse synth --split test`, or a set of the same layout "
+                    "without masks or scene.json (dev_cycles: masks from env_K_pos.exr and ref_depth.exr, "
+                    "no oracle row)")
+        ->required();
     cmd->add_option("--model", o->model, "Model file (default: the bundled small model)");
     cmd->add_option("-o,--output", o->out, "Output directory: table.md, metrics.csv, contact_sheet.png")
         ->capture_default_str();

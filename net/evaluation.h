@@ -1,6 +1,9 @@
-// `lighthouse eval`: the paper's Table 2 on our synthetic test split. Per test envmap, four
-// predictions are scored against the ground truth (CONVENTIONS.md metrics, all and observed
-// content), and reported as mean +- std:
+// `lighthouse eval`: the paper's Table 2 on our synthetic test split, or on any data set of
+// the same layout (dev_cycles: masks computed from env_K_pos.exr, no oracle without
+// scene.json). Per test envmap, four predictions are scored against the ground truth
+// (docs/metrics.md: CONVENTIONS.md's PSNR and RGB angle over all and observed content, and
+// the log-luminance RMSE and diffuse-irradiance error that see HDR light), and reported as
+// mean +- std:
 //   ours            the completed lighting volume, rendered by the C++ ray marcher;
 //   MPI only        the MPI resampled onto the levels without completion; what it leaves
 //                   unseen is filled with grey (sRGB 0.5), as in the paper's ablation;
@@ -8,7 +11,9 @@
 //                   from the reference camera, its unobserved directions filled with the mean
 //                   of the observed content (the reference image's mean colour);
 //   oracle          the scene's true geometry and light voxelised into the same layout, the
-//                   ceiling of any predictor at this resolution (synth/oracle.h).
+//                   ceiling of any predictor at this resolution (synth/oracle.h). It needs
+//                   every scene's scene.json; where one lacks it, the row is left out and
+//                   the progress stream says so.
 #pragma once
 
 #include <iosfwd>
@@ -31,6 +36,7 @@ struct EvalOptions {
 struct MethodScores {
     std::string name;
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
+    std::vector<double> logLuminanceAll, logLuminanceObserved, irradianceError;
 };
 
 struct EvalReport {

@@ -1,22 +1,65 @@
 #include "net/training_data.h"
 
 #include "core/errors.h"
+#include "net/observed_mask.h"
 #include "render/image_io.h"
 #include "render/metrics.h"
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 
 namespace fs = std::filesystem;
 
 namespace lh::net {
+
+namespace {
+
+// The reference view's z-depth, under the names the two data sets use.
+constexpr const char* kDepthFiles[] = {"ref_depth.exr", "depth.exr"};
+
+// One envmap's observed mask: the shipped env_K_mask.png, or one computed from the
+// first-hit positions and the reference depth (read once per example, into `depth`).
+std::vector<std::uint8_t> observedMask(const fs::path& dir, const EnvmapSample& sample,
+                                       const ImageRGB& envmap, const PinholeCamera& reference,
+                                       std::optional<ImageRGB>& depth) {
+    const std::string stem = fs::path(sample.file).stem().string();
+    const fs::path maskFile = dir / (stem + "_mask.png");
+    if (fs::is_regular_file(maskFile)) return loadMask(maskFile.string(), envmap.width, envmap.height);
+
+    const fs::path positionFile = dir / sample.positionFile;
+    if (!depth)
+        for (const char* name : kDepthFiles)
+            if (fs::is_regular_file(dir / name)) {
+                depth = readImage((dir / name).string());
+                break;
+            }
+    if (sample.positionFile.empty() || !fs::is_regular_file(positionFile) || !depth)
+        throw FileError("'" + dir.string() + "' has no " + maskFile.filename().string() +
+                        ", nor the first-hit positions (cameras.json envmaps[].position_file) and "
+                        "ref_depth.exr (or depth.exr) to compute the observed mask from");
+    const ImageRGB positions = readImage(positionFile.string());
+    if (positions.width != envmap.width || positions.height != envmap.height)
+        throw InputError("'" + positionFile.string() + "' is " + std::to_string(positions.width) + "x" +
+                         std::to_string(positions.height) + " but its envmap is " +
+                         std::to_string(envmap.width) + "x" + std::to_string(envmap.height));
+    try {
+        return observedMaskFromDepth(positions, reference, *depth);
+    } catch (const InputError& e) {
+        throw InputError("'" + dir.string() + "': " + e.what());
+    }
+}
+
+}  // namespace
 
 std::vector<std::string> listExamples(const std::string& dataDir) {
     if (!fs::is_directory(dataDir))
         throw FileError("data directory '" + dataDir + "' not found (make one with 'lighthouse synth')");
     std::vector<std::string> out;
     for (const auto& entry : fs::directory_iterator(dataDir))
-        if (entry.is_directory() && fs::is_regular_file(entry.path() / "cameras.json"))
+        // Hidden directories are examples still being written by `synth` (".ID.partial").
+        if (entry.is_directory() && entry.path().filename().string().rfind('.', 0) != 0 &&
+            fs::is_regular_file(entry.path() / "cameras.json"))
             out.push_back(entry.path().string());
     std::sort(out.begin(), out.end());
     if (out.empty())
@@ -34,13 +77,10 @@ TrainingExample loadExample(const std::string& directory, bool withMasks) {
     ex.ref = readImage((dir / "ref.png").string());
     ex.src = readImage((dir / "src.png").string());
     ex.tgt = readImage((dir / "tgt.png").string());
+    std::optional<ImageRGB> depth;  // read when the first mask must be computed
     for (const auto& e : ex.cameras.envmaps) {
         ex.envmaps.push_back(readImage((dir / e.file).string()));
-        if (withMasks) {
-            const std::string stem = fs::path(e.file).stem().string();
-            ex.masks.push_back(loadMask((dir / (stem + "_mask.png")).string(), ex.envmaps.back().width,
-                                        ex.envmaps.back().height));
-        }
+        if (withMasks) ex.masks.push_back(observedMask(dir, e, ex.envmaps.back(), ex.cameras.ref, depth));
     }
     if (ex.envmaps.empty()) throw FileError("'" + directory + "' has no ground-truth envmaps");
     return ex;

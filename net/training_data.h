@@ -1,6 +1,7 @@
 // Reading the synthetic data sets of `lighthouse synth` (synth/dataset.h) for training and
-// evaluation. The network sees what a user's camera gives: the 8-bit PNG views, decoded from
-// sRGB; ground-truth envmaps are the linear HDR EXRs.
+// evaluation, and data sets of the same layout made elsewhere (dev_cycles, rendered by
+// Blender Cycles: no env_K_mask.png, no scene.json). The network sees what a user's camera
+// gives: the 8-bit PNG views, decoded from sRGB; ground-truth envmaps are the linear HDR EXRs.
 #pragma once
 
 #include "core/camera.h"
@@ -25,6 +26,9 @@ struct TrainingExample {
 std::vector<std::string> listExamples(const std::string& dataDir);
 
 // Throws FileError naming the example and the file that is missing or unreadable.
+// With `withMasks`, envmap K's mask is env_K_mask.png when there is one; otherwise it is
+// computed (net/observed_mask.h) from the envmap's position_file (env_K_pos.exr) and the
+// reference view's z-depth, ref_depth.exr (dev_cycles) or depth.exr (lighthouse synth).
 TrainingExample loadExample(const std::string& directory, bool withMasks = false);
 
 }  // namespace lh::net

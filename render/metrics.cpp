@@ -1,6 +1,7 @@
 #include "render/metrics.h"
 
 #include "core/errors.h"
+#include "render/envmap_layout.h"
 #include "render/image_io.h"
 
 #include <algorithm>
@@ -59,6 +60,17 @@ double norm(const float* v) {
     return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
 }
 
+// Rec. 709 luminance of linear RGB, negatives (a broken prediction's) counted as 0 so that
+// ln(1 + Y) stays defined.
+double luminance(const float* rgb) {
+    const double y = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+    return std::max(y, 0.0);
+}
+
+// The unit axis normals in AxisNormal order.
+const Vec3d kNormals[kAxisNormals] = {Vec3d(1, 0, 0),  Vec3d(-1, 0, 0), Vec3d(0, 1, 0),
+                                      Vec3d(0, -1, 0), Vec3d(0, 0, 1),  Vec3d(0, 0, -1)};
+
 }  // namespace
 
 double psnr(const ImageRGB& pred, const ImageRGB& gt, const std::vector<std::uint8_t>* mask) {
@@ -95,12 +107,67 @@ double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
     return used == 0 ? kNaN : sum / double(used);
 }
 
+AxisIrradiance axisIrradiance(const ImageRGB& envmap) {
+    if (envmap.empty()) throw InputError("cannot integrate the irradiance of an empty envmap");
+    if (!allFinite(envmap)) throw InputError("envmap holds NaN/Inf");
+    AxisIrradiance result{};
+    const int width = envmap.width, height = envmap.height;
+    const double pixelArea = (2.0 * M_PI / width) * (M_PI / height);  // sr per unit sin(phi)
+    for (int r = 0; r < height; ++r) {
+        const double sinPhi = std::sin(envmapPolarAngle(r + 0.5, height));
+        const double solidAngle = pixelArea * sinPhi;
+        for (int c = 0; c < width; ++c) {
+            const Vec3d d = envmapPixelDirection(r, c, width, height);
+            const float* radiance = envmap.at(c, r);
+            for (int n = 0; n < kAxisNormals; ++n) {
+                const double weight = std::max(0.0, kNormals[n].dot(d)) * solidAngle;
+                if (weight == 0.0) continue;
+                for (int ch = 0; ch < 3; ++ch) result.rgb[n][ch] += weight * radiance[ch];
+            }
+        }
+    }
+    return result;
+}
+
+double irradianceError(const ImageRGB& pred, const ImageRGB& gt) {
+    checkComparable(pred, gt, nullptr);
+    const AxisIrradiance p = axisIrradiance(pred), g = axisIrradiance(gt);
+    double sum = 0.0;
+    int terms = 0;
+    for (int n = 0; n < kAxisNormals; ++n)
+        for (int ch = 0; ch < 3; ++ch) {
+            if (!(g.rgb[n][ch] > kMinIrradiance)) continue;
+            sum += std::abs(p.rgb[n][ch] - g.rgb[n][ch]) / g.rgb[n][ch];
+            ++terms;
+        }
+    return terms == 0 ? kNaN : sum / terms;
+}
+
+double logLuminanceRmse(const ImageRGB& pred, const ImageRGB& gt,
+                        const std::vector<std::uint8_t>* mask) {
+    checkComparable(pred, gt, mask);
+    double squares = 0.0;
+    std::size_t used = 0;
+    const std::size_t pixels = std::size_t(gt.width) * gt.height;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        if (!counts(mask, p)) continue;
+        // log1p keeps the digits of a dim pixel, where ln(1 + Y) is close to Y.
+        const double d = std::log1p(luminance(&pred.pixels[3 * p])) -
+                         std::log1p(luminance(&gt.pixels[3 * p]));
+        squares += d * d;
+        ++used;
+    }
+    return used == 0 ? kNaN : std::sqrt(squares / double(used));
+}
+
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
                              const std::vector<std::uint8_t>* mask) {
-    EnvmapMetrics m{psnr(pred, gt), angularErrorDegrees(pred, gt), kNaN, kNaN};
+    EnvmapMetrics m{psnr(pred, gt),          angularErrorDegrees(pred, gt), kNaN, kNaN,
+                    irradianceError(pred, gt), logLuminanceRmse(pred, gt),   kNaN};
     if (mask) {
         m.psnrObserved = psnr(pred, gt, mask);
         m.angularObserved = angularErrorDegrees(pred, gt, mask);
+        m.logLuminanceObserved = logLuminanceRmse(pred, gt, mask);
     }
     return m;
 }

@@ -1,6 +1,9 @@
 // Envmap quality metrics, exactly as ../shared/CONVENTIONS.md ("Metrics") defines them:
 // PSNR on sRGB-encoded clamped values and RGB angular error on linear values, over every
-// pixel ("all content") or over the pixels of a mask ("observed content").
+// pixel ("all content") or over the pixels of a mask ("observed content"). Two HDR metrics
+// see what clamped PSNR cannot (lamps and windows far above 1): the relative error of the
+// diffuse irradiance at six axis normals, and the RMSE of log(1 + luminance). docs/metrics.md
+// defines all of them.
 //
 // A mask is one byte per pixel, row-major like ImageRGB; nonzero = observed.
 // Pred and gt must have the same size and hold only finite values, and a mask must have
@@ -10,6 +13,7 @@
 #include "render/image.h"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -27,12 +31,48 @@ double psnr(const ImageRGB& pred, const ImageRGB& gt,
 double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
                            const std::vector<std::uint8_t>* mask = nullptr);
 
-// The four numbers the paper reports per envmap. The observed ones are NaN without a mask.
+// The six axis normals of the irradiance metric, in this order (world frame, OpenCV axes:
+// +y is down).
+enum class AxisNormal { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
+constexpr int kAxisNormals = 6;
+
+// Diffuse irradiance of an equirectangular envmap (CONVENTIONS.md layout) at normal n, per
+// RGB channel: E(n) = sum over pixels of L(d) max(0, n.d) dOmega, with the pixel's solid
+// angle dOmega = (2 pi / W) (pi / H) sin phi. Units: radiance times steradians (a constant
+// L = 1 gives pi). Throws InputError for an empty or non-finite envmap.
+struct AxisIrradiance {
+    double rgb[kAxisNormals][3];  // [AxisNormal][channel]
+    const double* at(AxisNormal n) const { return rgb[int(n)]; }
+};
+AxisIrradiance axisIrradiance(const ImageRGB& envmap);
+
+// Smallest true irradiance (radiance x sr) a relative error is taken against: a darker
+// (normal, channel) term of the ground truth is left out of the mean, since dividing by
+// next to nothing would let one black wall outweigh the whole map.
+constexpr double kMinIrradiance = 1e-6;
+
+// Mean over the 6 normals and 3 channels of |E_pred - E_gt| / E_gt (a ratio; 1.0 = off by
+// the truth's own size), over the terms with E_gt > kMinIrradiance; NaN when there is none
+// (a black ground truth).
+double irradianceError(const ImageRGB& pred, const ImageRGB& gt);
+
+// Root mean square over pixels (all, or those in the mask) of ln(1 + Y_pred) - ln(1 + Y_gt),
+// Y = 0.2126 R + 0.7152 G + 0.0722 B of the linear radiance, a negative Y counted as 0.
+// Natural log units; NaN for a mask with no observed pixel.
+double logLuminanceRmse(const ImageRGB& pred, const ImageRGB& gt,
+                        const std::vector<std::uint8_t>* mask = nullptr);
+
+// The four numbers the paper reports per envmap, and the two HDR ones. The observed ones
+// are NaN without a mask. Irradiance is an integral over the whole sphere, so it has no
+// observed variant.
 struct EnvmapMetrics {
     double psnrAll;          // dB
     double angularAll;       // degrees
     double psnrObserved;     // dB
     double angularObserved;  // degrees
+    double irradianceError = std::numeric_limits<double>::quiet_NaN();      // ratio
+    double logLuminanceAll = std::numeric_limits<double>::quiet_NaN();      // ln units
+    double logLuminanceObserved = std::numeric_limits<double>::quiet_NaN();  // ln units
 };
 
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,

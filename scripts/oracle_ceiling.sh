@@ -37,8 +37,8 @@ for config in "${configs[@]}"; do
   report=$("$bin" compare --batch "$pred" "$out/test")
   all=$(echo "$report" | grep '^all content' | sed 's/all content *//')
   observed=$(echo "$report" | grep '^observed content' | sed 's/observed content *//')
-  read -r pa _ pas aa _ aas <<< "$all"
-  read -r po _ pos ao _ aos <<< "$observed"
+  read -r pa _ pas aa _ aas _ <<< "$all"  # the HDR columns after these are not tabulated here
+  read -r po _ pos ao _ aos _ <<< "$observed"
   printf '| %s x %s^3 | %s ± %s | %s ± %s | %s ± %s | %s ± %s | %d.%02d |\n' \
     "$levels" "$res" "$pa" "$pas" "$aa" "$aas" "$po" "$pos" "$ao" "$aos" $((ms / 1000)) $((ms % 1000 / 10)) >> "$table.tmp"
   echo "done: $levels x $res^3" >&2

@@ -2,8 +2,9 @@
 # End-to-end test of `lighthouse compare`: compare_test.sh LIGHTHOUSE SCRIPTS_DIR
 #
 # Runs in the CLI fixture directory (it renders envmaps of its example.vdb) and works in
-# compare_test/ there. Checks single comparisons (identical maps -> inf PSNR and 0 degrees,
-# different maps -> finite values, a full mask reproduces "all content", an empty mask
+# compare_test/ there. Checks single comparisons (identical maps -> inf PSNR and 0 for the
+# other three metrics, different maps -> finite values, a volume twice as bright -> an
+# irradiance error of exactly 1.00, a full mask reproduces "all content", an empty mask
 # reports no observed pixels), batch mode (directory walk that skips _pos.exr files and
 # masks, masks beside the ground truth, CSV rows that agree with the printed means, progress
 # on stderr for more than 20 envmaps) and the errors (size mismatches, missing prediction).
@@ -56,16 +57,25 @@ write_mask mask_left.png 32 16 left
 value_of() { awk -v label="$1" -v column="$2" '$1 == label { print $column }'; }
 
 # ---- single comparisons ----------------------------------------------------------------------
-ok --stdout "^all content +inf +0[.]00$" -- "$lh" compare a_000.exr a_000.exr
-ok --stdout "^all content +[0-9]+[.][0-9]{2} +[0-9]+[.][0-9]{2}$" -- "$lh" compare a_000.exr a_001.exr
+num="[0-9]+[.][0-9]{2}"
+ok --stdout "^ +PSNR [(]dB[)] +RGB angular error [(]deg[)] +log-luminance RMSE +irradiance rel[.] error$" \
+   --stdout "^all content +inf +0[.]00 +0[.]00 +0[.]00$" -- "$lh" compare a_000.exr a_000.exr
+ok --stdout "^all content +$num +$num +$num +$num$" -- "$lh" compare a_000.exr a_001.exr
+# Every radiance doubled (the same volume at exposure 2): the irradiance is off by exactly
+# the truth's own size, the RGB angle not at all.
+"$lh" edit ../example.vdb --exposure 2 -o bright.vdb >/dev/null 2>&1 &&
+    "$lh" render-envmap bright.vdb --at 0,0,1 --size 32x16 -o bright.exr 2>/dev/null ||
+    { echo "edit/render-envmap failed"; exit 1; }
+ok --stdout "^all content +$num +0[.]00 +$num +1[.]00$" -- "$lh" compare bright.exr a_000.exr
 out=$("$lh" compare a_000.exr a_001.exr --mask mask_all.png 2>&1)
 psnr_all=$(value_of all 3 <<<"$out")
 [ "$psnr_all" != inf ] && [ -n "$psnr_all" ] || fail "different envmaps: PSNR '$psnr_all'"
 [ "$psnr_all" = "$(value_of observed 3 <<<"$out")" ] &&
-    [ "$(value_of all 4 <<<"$out")" = "$(value_of observed 4 <<<"$out")" ] ||
+    [ "$(value_of all 4 <<<"$out")" = "$(value_of observed 4 <<<"$out")" ] &&
+    [ "$(value_of all 5 <<<"$out")" = "$(value_of observed 5 <<<"$out")" ] ||
     fail "a mask of every pixel must reproduce 'all content': $out"
 out=$("$lh" compare a_000.exr a_001.exr --mask mask_left.png 2>&1)
-grep -Eq "^observed content +[0-9]+[.][0-9]{2} +[0-9]+[.][0-9]{2}$" <<<"$out" ||
+grep -Eq "^observed content +$num +$num +$num +-$" <<<"$out" ||
     fail "half mask: no observed row: $out"
 [ "$(value_of observed 3 <<<"$out")" != "$psnr_all" ] || fail "half mask changed nothing: $out"
 ok --stdout "^observed content +no observed pixels" -- "$lh" compare a_000.exr a_001.exr --mask mask_none.png
@@ -89,20 +99,22 @@ cp a_002.exr pred/scene_b/env_0.exr
 cp a_000.exr pred/scene_b/env_1.exr
 
 ok --stdout "^3 envmaps, 1 with an observed mask" \
-   --stdout "^all content +[0-9]+[.][0-9]{2} ± [0-9]+[.][0-9]{2} +[0-9]+[.][0-9]{2} ± [0-9]+[.][0-9]{2}$" \
-   --stdout "^observed content +[0-9]+[.][0-9]{2} ± 0[.]00 +[0-9]+[.][0-9]{2} ± 0[.]00$" \
+   --stdout "^all content +$num ± $num +$num ± $num +$num ± $num +$num ± $num$" \
+   --stdout "^observed content +$num ± 0[.]00 +$num ± 0[.]00 +$num ± 0[.]00 +-$" \
    --file rows.csv -- "$lh" compare --batch pred gt --csv rows.csv
 if [ -s rows.csv ]; then
-    [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg" ] ||
+    [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error" ] ||
         fail "CSV header: $(head -n 1 rows.csv)"
     [ "$(tail -n +2 rows.csv | cut -d, -f1 | tr '\n' ' ')" = \
       "scene_a/env_0.exr scene_b/env_0.exr scene_b/env_1.exr " ] || fail "CSV rows: $(cat rows.csv)"
-    awk -F, 'NR > 1 && ($4 == "nan") != ($1 != "scene_a/env_0.exr") { bad = 1 } END { exit bad }' rows.csv ||
+    awk -F, 'NR > 1 && (($4 == "nan") != ($1 != "scene_a/env_0.exr") || ($4 == "nan") != ($7 == "nan")) { bad = 1 } END { exit bad }' rows.csv ||
         fail "CSV: only scene_a/env_0.exr has observed metrics: $(cat rows.csv)"
     # The printed means are the means of the CSV rows.
     out=$("$lh" compare --batch pred gt 2>&1)
-    for column in 2 3; do
-        field=$((column == 2 ? 3 : 6))
+    # CSV columns 2, 3, 6, 8 (PSNR, angle, log-luminance, irradiance, all content) are the
+    # means in fields 3, 6, 9, 12 of the "all content" row ("mean ± std" is three fields).
+    for pair in 2:3 3:6 6:9 8:12; do
+        column=${pair%:*} field=${pair#*:}
         mean=$(awk -F, -v c=$column 'NR > 1 { s += $c; n++ } END { printf "%.2f", s / n }' rows.csv)
         [ "$(value_of all $field <<<"$out")" = "$mean" ] ||
             fail "CSV column $column mean $mean does not match the table: $out"

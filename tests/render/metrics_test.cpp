@@ -1,6 +1,7 @@
 #include "render/metrics.h"
 
 #include "core/errors.h"
+#include "render/envmap_layout.h"
 #include "render/image_io.h"
 
 #include <gtest/gtest.h>
@@ -183,6 +184,121 @@ TEST(Metrics, MeanStdLeavesOutNaN) {
     EXPECT_TRUE(std::isnan(none.std));
     EXPECT_EQ(none.count, 0);
     EXPECT_EQ(none.nanCount, 2);
+}
+
+// ---- HDR metrics: diffuse irradiance at the six axis normals, log-luminance RMSE ---------
+
+// The pixel discretisation of the hemisphere integral: at 240x120 the midpoint rule with the
+// kinks of max(0, n.d) on pixel boundaries is good to about 1e-4 relative.
+constexpr double kIrradianceTolerance = 2e-4;
+
+TEST(HdrMetrics, ConstantRadianceGivesPiAtEveryNormal) {
+    const AxisIrradiance e = axisIrradiance(uniform(240, 120, 1.f, 2.f, 0.5f));
+    for (int n = 0; n < kAxisNormals; ++n) {
+        EXPECT_NEAR(e.rgb[n][0], M_PI, M_PI * kIrradianceTolerance) << "normal " << n;
+        EXPECT_NEAR(e.rgb[n][1], 2.0 * M_PI, 2.0 * M_PI * kIrradianceTolerance) << "normal " << n;
+        EXPECT_NEAR(e.rgb[n][2], 0.5 * M_PI, 0.5 * M_PI * kIrradianceTolerance) << "normal " << n;
+    }
+}
+
+TEST(HdrMetrics, BrightCapAtPlusXLightsOnlyPlusX) {
+    // Radiance 1 within alpha = 30 degrees of +x, 0 elsewhere. In polar coordinates about +x
+    // (beta from the axis): E(+x) = integral of cos(beta) = pi sin^2(alpha) = pi / 4; -x sees
+    // none of the cap; each side normal (+-y, +-z) gets the integral of sin(beta) cos(psi)
+    // over its half of the cap, 2 * integral_0^alpha sin^2(beta) = alpha - sin(2 alpha) / 2.
+    const int width = 480, height = 240;
+    const double alpha = M_PI / 6.0;
+    ImageRGB envmap(width, height);
+    for (int r = 0; r < height; ++r)
+        for (int c = 0; c < width; ++c)
+            if (envmapPixelDirection(r, c, width, height).x() > std::cos(alpha))
+                std::fill_n(envmap.at(c, r), 3, 1.f);
+    const AxisIrradiance e = axisIrradiance(envmap);
+    // The cap's rim cuts through pixels: 3% is the staircase at this size.
+    EXPECT_NEAR(e.at(AxisNormal::PlusX)[0], M_PI / 4.0, 0.03 * M_PI / 4.0);
+    EXPECT_EQ(e.at(AxisNormal::MinusX)[0], 0.0);
+    const double side = alpha - std::sin(2.0 * alpha) / 2.0;
+    for (AxisNormal n : {AxisNormal::PlusY, AxisNormal::MinusY, AxisNormal::PlusZ, AxisNormal::MinusZ})
+        EXPECT_NEAR(e.at(n)[1], side, 0.03 * side) << "normal " << int(n);
+}
+
+TEST(HdrMetrics, PlusYIsDownAndSeesOnlyTheLowerHalf) {
+    // OpenCV axes: +y is down, and row 0 looks up. A lit lower half (rows H/2..H-1) gives
+    // E(+y) = pi and E(-y) = 0.
+    const int width = 240, height = 120;
+    ImageRGB envmap(width, height);
+    for (int r = height / 2; r < height; ++r)
+        for (int c = 0; c < width; ++c) std::fill_n(envmap.at(c, r), 3, 1.f);
+    const AxisIrradiance e = axisIrradiance(envmap);
+    EXPECT_NEAR(e.at(AxisNormal::PlusY)[0], M_PI, M_PI * kIrradianceTolerance);
+    EXPECT_EQ(e.at(AxisNormal::MinusY)[0], 0.0);
+    EXPECT_NEAR(e.at(AxisNormal::PlusX)[0], M_PI / 2.0, M_PI / 2.0 * kIrradianceTolerance);
+}
+
+TEST(HdrMetrics, IrradianceErrorIsRelativeToTheTruth) {
+    const ImageRGB gt = uniform(64, 32, 3.f, 0.2f, 50.f);
+    EXPECT_EQ(irradianceError(gt, gt), 0.0);
+    EXPECT_NEAR(irradianceError(uniform(64, 32, 6.f, 0.4f, 100.f), gt), 1.0, 1e-9);  // 2x
+    EXPECT_NEAR(irradianceError(uniform(64, 32, 1.5f, 0.1f, 25.f), gt), 0.5, 1e-9);  // half
+    // Off in one channel only: that channel's 6 terms are 1.0, the other 12 are 0.
+    EXPECT_NEAR(irradianceError(uniform(64, 32, 6.f, 0.2f, 50.f), gt), 1.0 / 3.0, 1e-9);
+    // PSNR cannot tell a lamp of 50 from one of 100 (both clamp to 1); this metric can.
+    EXPECT_EQ(psnr(uniform(64, 32, 1.f, 1.f, 100.f), uniform(64, 32, 1.f, 1.f, 50.f)), kInf);
+}
+
+TEST(HdrMetrics, IrradianceErrorLeavesOutDarkTruthTerms) {
+    // Ground truth lit only in its lower half: E_gt(-y) = 0 is left out, the other 5 normals
+    // count. A prediction twice the truth is off by 1.0 on each of them; a prediction that
+    // also lights the upper half is penalised only through the side normals.
+    const int width = 240, height = 120;
+    ImageRGB gt(width, height);
+    for (int r = height / 2; r < height; ++r)
+        for (int c = 0; c < width; ++c) std::fill_n(gt.at(c, r), 3, 1.f);
+    ImageRGB twice = gt;
+    for (float& v : twice.pixels) v *= 2.f;
+    EXPECT_NEAR(irradianceError(twice, gt), 1.0, 1e-9);
+    // Lit everywhere: E(+y) unchanged (pi vs pi), the 4 side normals pi vs pi/2 (error 1).
+    EXPECT_NEAR(irradianceError(uniform(width, height, 1.f, 1.f, 1.f), gt), 4.0 / 5.0, 1e-3);
+    // A black truth has no term at all.
+    const ImageRGB black(width, height);
+    EXPECT_TRUE(std::isnan(irradianceError(twice, black)));
+}
+
+TEST(HdrMetrics, LogLuminanceRmseOfAConstantOffset) {
+    const ImageRGB gt = uniform(16, 8, 0.5f, 0.5f, 0.5f);  // Y = 0.5
+    EXPECT_EQ(logLuminanceRmse(gt, gt), 0.0);
+    // Y = 0.2126 * 4 + 0.7152 * 2 + 0.0722 * 1 = 2.353 against Y = 0.5, at every pixel.
+    const ImageRGB pred = uniform(16, 8, 4.f, 2.f, 1.f);
+    const double expected = std::log(1.0 + 2.353) - std::log(1.5);
+    EXPECT_NEAR(logLuminanceRmse(pred, gt), expected, 1e-6);
+    EXPECT_NEAR(logLuminanceRmse(gt, pred), expected, 1e-6);  // symmetric
+    // Negative luminance counts as 0: ln(1 + 0) - ln(1.5).
+    EXPECT_NEAR(logLuminanceRmse(uniform(16, 8, -1.f, -1.f, -1.f), gt), std::log(1.5), 1e-6);
+}
+
+TEST(HdrMetrics, LogLuminanceRmseIsARootMeanSquareAndHonoursTheMask) {
+    // Pixel 0 exact (Y = 0), pixel 1 at Y = e - 1 against 0: difference 1. RMSE = sqrt(1/2).
+    ImageRGB pred(2, 1), gt(2, 1);
+    std::fill_n(pred.at(1, 0), 3, float(M_E - 1.0));  // grey: Y = R = G = B
+    EXPECT_NEAR(logLuminanceRmse(pred, gt), std::sqrt(0.5), 1e-6);
+    const std::vector<std::uint8_t> onlyWrong = {0, 1}, onlyExact = {1, 0}, none = {0, 0};
+    EXPECT_NEAR(logLuminanceRmse(pred, gt, &onlyWrong), 1.0, 1e-6);
+    EXPECT_EQ(logLuminanceRmse(pred, gt, &onlyExact), 0.0);
+    EXPECT_TRUE(std::isnan(logLuminanceRmse(pred, gt, &none)));
+}
+
+TEST(HdrMetrics, CompareEnvmapsFillsTheHdrFields) {
+    const ImageRGB gt = uniform(32, 16, 0.5f, 0.5f, 0.5f);
+    const ImageRGB pred = uniform(32, 16, 1.f, 1.f, 1.f);
+    const EnvmapMetrics all = compareEnvmaps(pred, gt);
+    EXPECT_NEAR(all.irradianceError, 1.0, 1e-9);
+    EXPECT_NEAR(all.logLuminanceAll, std::log(2.0) - std::log(1.5), 1e-6);
+    EXPECT_TRUE(std::isnan(all.logLuminanceObserved));
+    const std::vector<std::uint8_t> none(32 * 16, 0);
+    const EnvmapMetrics masked = compareEnvmaps(pred, gt, &none);
+    EXPECT_TRUE(std::isnan(masked.logLuminanceObserved));
+    EXPECT_EQ(masked.irradianceError, all.irradianceError);
+    EXPECT_THROW(irradianceError(uniform(4, 2, 1.f, 1.f, 1.f), gt), InputError);
 }
 
 }  // namespace
