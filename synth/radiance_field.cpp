@@ -73,9 +73,13 @@ bool RadianceField::isEmitting(const SurfacePoint& point) const {
     return scene_.primitives[point.primitive].isEmitter() || decalAt(point) >= 0;
 }
 
-Vec3d RadianceField::albedo(const SurfacePoint& point) const {
+Vec3d RadianceField::textureAlbedo(const SurfacePoint& point) const {
     const Primitive& p = scene_.primitives[point.primitive];
-    return p.textureFor(point.face).albedo(p.toLocal(point.position));
+    return p.textureFor(point.face).albedo(p.toLocal(point.position), p.rotation.transpose() * point.normal);
+}
+
+Vec3d RadianceField::albedo(const SurfacePoint& point) const {
+    return viewIndependentAlbedo(scene_.primitives[point.primitive].material, textureAlbedo(point));
 }
 
 Vec3d RadianceField::interpolate(const std::vector<Vec3d>& texels, int patch, double u, double v) const {

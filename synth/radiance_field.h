@@ -1,7 +1,8 @@
 // Light transport in a synthetic scene, baked once: the radiance leaving every surface point.
 //
-// All surfaces are diffuse, so outgoing radiance is emission + albedo / pi * irradiance and
-// does not depend on the view direction. Irradiance is stored on texels (about 10 cm) over
+// Every surface is treated as diffuse, so outgoing radiance is emission + albedo / pi *
+// irradiance and does not depend on the view direction; glossy and metallic surfaces take
+// the albedo of equal total reflectance (material.h). Irradiance is stored on texels (about 10 cm) over
 // every non-emitting face and interpolated bilinearly; albedo is evaluated at full resolution
 // where a surface is seen. Per texel:
 //   direct   = stratified samples on every emitter with shadow rays, and gather rays that hit
@@ -40,7 +41,13 @@ public:
     Vec3d emitted(const SurfacePoint& point) const;
     bool isEmitting(const SurfacePoint& point) const;
     Vec3d irradiance(const SurfacePoint& point) const;  // before exposure
+    // The view-independent albedo light transport uses (material.h): the texture's albedo,
+    // raised by the specular reflectance on glossy and metallic surfaces.
     Vec3d albedo(const SurfacePoint& point) const;
+    // The texture's albedo alone: the diffuse lobe of a glossy or metallic surface.
+    Vec3d textureAlbedo(const SurfacePoint& point) const;
+
+    const Scene& scene() const { return scene_; }
 
     std::size_t texelCount() const { return irradiance_.size(); }
     double texelSize() const { return texelSize_; }

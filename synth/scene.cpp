@@ -57,9 +57,28 @@ SurfacePoint makePoint(const Primitive& p, int index, int face, double u, double
     return s;
 }
 
+// Running-bond brick (see kBrickRowHeight): colorA in bricks, colorB on mortar lines.
+Vec3d brickAlbedo(const Texture& t, const Vec3d& q, const Vec3d& normal) {
+    // The face's plane: rows run across the vertical axis y on walls and on box sides, across
+    // z on floors, ceilings and tops; bricks run along the other in-plane axis.
+    const Vec3d n(std::abs(normal.x()), std::abs(normal.y()), std::abs(normal.z()));
+    const int axis = n.y() >= n.x() && n.y() >= n.z() ? 1 : (n.x() >= n.z() ? 0 : 2);
+    const double rowCoordinate = axis == 1 ? q.z() : q.y();
+    const double alongCoordinate = axis == 0 ? q.z() : q.x();
+    const double rowF = rowCoordinate / kBrickRowHeight;
+    const int row = int(std::floor(rowF));
+    const double inRow = fract(rowF) * kBrickRowHeight;  // brick-lengths from the row's joint
+    const double alongF = alongCoordinate + ((row & 1) ? 0.5 : 0.0);
+    const int column = int(std::floor(alongF));
+    const double inBrick = fract(alongF);
+    const double m = kMortarWidth / 2;
+    if (inRow < m || inRow > kBrickRowHeight - m || inBrick < m || inBrick > 1 - m) return t.colorB;
+    return t.colorA * (0.8 + 0.2 * latticeValue(column, row, axis, t.noiseSeed));
+}
+
 }  // namespace
 
-Vec3d Texture::albedo(const Vec3d& local) const {
+Vec3d Texture::albedo(const Vec3d& local, const Vec3d& localNormal) const {
     const Vec3d q = local / scale + Vec3d(kPatternShift);
     switch (kind) {
         case TextureKind::Plain:
@@ -80,6 +99,12 @@ Vec3d Texture::albedo(const Vec3d& local) const {
             const double t = fract(ring);
             return mix(colorA, colorB, std::clamp((t - 0.3) / 0.4, 0.0, 1.0));
         }
+        case TextureKind::Brick:
+            return brickAlbedo(*this, q, localNormal);
+        case TextureKind::Bands:
+            return mix(colorA, colorB, 0.5 + 0.5 * std::sin(2 * M_PI * (q.x() + q.y() + q.z()) / std::sqrt(3.0)));
+        case TextureKind::Rings:
+            return mix(colorA, colorB, 0.5 + 0.5 * std::sin(2 * M_PI * q.length()));
     }
     return colorA;
 }

@@ -3,11 +3,14 @@
 // A scene is a list of analytic primitives in the world frame (the reference camera's frame,
 // OpenCV axes, metres). The room is a box seen from inside (`inverted`): free space inside,
 // solid outside. Windows and emissive panels are quads lying on the room's walls ("decals"):
-// they replace the wall's radiance where they cover it. All surfaces are diffuse, so radiance
-// does not depend on the view direction and matches the lighting-volume model exactly.
+// they replace the wall's radiance where they cover it. Light transport treats every surface
+// as diffuse, so the radiance it bakes does not depend on the view direction and matches the
+// lighting-volume model exactly; glossy and metallic furniture (material.h) add a
+// view-dependent reflection in the camera views only.
 #pragma once
 
 #include "core/camera.h"
+#include "synth/material.h"
 
 #include <cstdint>
 #include <string>
@@ -15,10 +18,21 @@
 
 namespace lh::synth {
 
-enum class TextureKind { Plain, Checker, Stripes, Noise, Wood };
+// New kinds go at the end: scene.json names them, and the generator draws them by index.
+enum class TextureKind { Plain, Checker, Stripes, Noise, Wood, Brick, Bands, Rings };
+
+// Running-bond brick in units of the texture's scale (one brick's length): rows this high,
+// mortar lines this wide (centred on the joints), every other row shifted by half a brick.
+constexpr double kBrickRowHeight = 1.0 / 3.0;
+constexpr double kMortarWidth = 0.07;
 
 // Solid (3D) procedural albedo, evaluated in the primitive's local frame so that patterns
 // move with the object. Colours are linear albedo in [0, 1).
+//   Checker, Stripes (along local x), Noise (value noise), Wood (noisy rings about local y);
+//   Brick: colorA bricks (each darkened by up to 20% at random) in colorB mortar, laid in
+//     the face's plane: rows along local y on vertical faces, along local z on horizontal ones;
+//   Bands: smooth sine bands across x + y + z; Rings: smooth spherical shells about the
+//     pattern's origin (concentric circles on every face).
 struct Texture {
     TextureKind kind = TextureKind::Plain;
     Vec3d colorA{0.5, 0.5, 0.5};
@@ -26,7 +40,9 @@ struct Texture {
     double scale = 0.5;  // pattern period, metres
     uint32_t noiseSeed = 0;
 
-    Vec3d albedo(const Vec3d& local) const;
+    // `local`: the point in the primitive's frame; `localNormal`: the surface normal there
+    // (either sign), which only Brick uses to lay its rows in the face's plane.
+    Vec3d albedo(const Vec3d& local, const Vec3d& localNormal) const;
 };
 
 enum class Shape { Box, Sphere, Cylinder, Quad };
@@ -41,6 +57,7 @@ struct Primitive {
     Vec3d half{0.5, 0.5, 0.5};
     bool inverted = false;  // the room: free inside, solid outside, faces point inwards
     Texture texture;
+    Material material;  // diffuse unless the generator makes it glossy or metallic
     std::vector<Texture> faceTextures;  // optional, one per face (the room: walls, floor, ceiling)
     Emission emission = Emission::None;
     Vec3d radiance{0.0, 0.0, 0.0};  // Constant emission, linear

@@ -26,7 +26,8 @@ Mat3d mat(const json& j) {
     return m;
 }
 
-const char* kTextureNames[] = {"plain", "checker", "stripes", "noise", "wood"};
+const char* kTextureNames[] = {"plain", "checker", "stripes", "noise", "wood", "brick", "bands", "rings"};
+const char* kMaterialNames[] = {"diffuse", "glossy", "metal"};
 const char* kShapeNames[] = {"box", "sphere", "cylinder", "quad"};
 const char* kEmissionNames[] = {"none", "constant", "window"};
 
@@ -52,6 +53,18 @@ Texture textureFrom(const json& j) {
     return t;
 }
 
+json materialJson(const Material& m) {
+    return {{"kind", kMaterialNames[int(m.kind)]}, {"f0", vec(m.f0)}, {"roughness", m.roughness}};
+}
+
+Material materialFrom(const json& j) {
+    Material m;
+    m.kind = MaterialKind(indexOf(kMaterialNames, j.at("kind").get<std::string>()));
+    m.f0 = vec(j.at("f0"));
+    m.roughness = j.at("roughness").get<double>();
+    return m;
+}
+
 }  // namespace
 
 std::string sceneToJson(const Scene& scene, const BakeOptions& bake) {
@@ -59,7 +72,8 @@ std::string sceneToJson(const Scene& scene, const BakeOptions& bake) {
     for (const Primitive& p : scene.primitives) {
         json o = {{"shape", kShapeNames[int(p.shape)]}, {"label", p.label}, {"centre", vec(p.centre)},
                   {"rotation", mat(p.rotation)}, {"half", vec(p.half)}, {"inverted", p.inverted},
-                  {"texture", textureJson(p.texture)}, {"emission", kEmissionNames[int(p.emission)]},
+                  {"texture", textureJson(p.texture)}, {"material", materialJson(p.material)},
+                  {"emission", kEmissionNames[int(p.emission)]},
                   {"radiance", vec(p.radiance)}, {"window", p.window}};
         if (!p.faceTextures.empty()) {
             o["face_textures"] = json::array();
@@ -98,6 +112,8 @@ Scene sceneFromJson(const std::string& text, const std::string& sourceName, Bake
             p.half = vec(o.at("half"));
             p.inverted = o.at("inverted").get<bool>();
             p.texture = textureFrom(o.at("texture"));
+            // Scenes of generator version 1 predate materials: every surface was diffuse.
+            if (o.contains("material")) p.material = materialFrom(o["material"]);
             p.emission = Emission(indexOf(kEmissionNames, o.at("emission").get<std::string>()));
             p.radiance = vec(o.at("radiance"));
             p.window = o.at("window").get<int>();

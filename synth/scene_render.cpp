@@ -1,6 +1,7 @@
 #include "synth/scene_render.h"
 
 #include "render/envmap_layout.h"
+#include "synth/specular_shading.h"
 
 #include <tbb/parallel_for.h>
 
@@ -11,11 +12,19 @@ namespace lh::synth {
 
 namespace {
 
-// Radiance along one ray: the first hit's outgoing radiance, black if nothing is hit.
+// Radiance along one ray: the first hit's baked (view-independent) radiance, black if
+// nothing is hit.
 Vec3d traceRadiance(const RayTracer& tracer, const RadianceField& field, const Vec3d& origin,
                     const Vec3d& dir) {
     const RayHit hit = tracer.intersect(origin, dir, 0.0);
     return hit.hit ? field.radiance(hit.point) : Vec3d(0.0);
+}
+
+// As traceRadiance, with the view-dependent reflection of glossy and metallic surfaces.
+Vec3d traceViewRadiance(const RayTracer& tracer, const RadianceField& field, const Vec3d& origin,
+                        const Vec3d& dir) {
+    const RayHit hit = tracer.intersect(origin, dir, 0.0);
+    return hit.hit ? viewRadiance(tracer, field, hit, dir) : Vec3d(0.0);
 }
 
 template <typename PixelFn>
@@ -41,7 +50,7 @@ ImageRGB renderSceneView(const RayTracer& tracer, const RadianceField& field,
         for (int sy = 0; sy < supersample; ++sy)
             for (int sx = 0; sx < supersample; ++sx) {
                 const double px = x + (sx + 0.5) / supersample, py = y + (sy + 0.5) / supersample;
-                sum += traceRadiance(tracer, field, camera.position, camera.pixelDirection(px, py));
+                sum += traceViewRadiance(tracer, field, camera.position, camera.pixelDirection(px, py));
             }
         store(image, x, y, sum / double(supersample * supersample));
     });

@@ -10,7 +10,8 @@
 
 namespace lh::synth {
 
-// Linear radiance through every pixel; `supersample`^2 fixed sub-pixel rays per pixel.
+// Linear radiance through every pixel; `supersample`^2 fixed sub-pixel rays per pixel. Glossy
+// and metallic surfaces show their view-dependent reflection (specular_shading.h).
 ImageRGB renderSceneView(const RayTracer& tracer, const RadianceField& field,
                          const PinholeCamera& camera, int supersample = 2);
 
@@ -18,6 +19,9 @@ ImageRGB renderSceneView(const RayTracer& tracer, const RadianceField& field,
 // pixel centre, in all three channels; +inf where nothing is hit.
 ImageRGB renderDepth(const RayTracer& tracer, const PinholeCamera& camera);
 
+// Envmaps show the baked, view-independent radiance of every surface (glossy and metallic ones
+// as diffuse surfaces of equal reflectance, material.h): the quantity a lighting volume
+// stores, so the oracle volume reproduces them up to its resolution.
 struct SceneEnvmap {
     ImageRGB radiance;            // linear, supersampled
     ImageRGB hitPositions;        // world position of the first hit along each pixel centre
