@@ -201,7 +201,7 @@ void writeDataset(const SynthOptions& o, const std::function<void(int, int, doub
             progress(i + 1, o.count, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     nlohmann::json manifest = {
-        {"generator_version", 1}, {"split", o.split}, {"first_index", o.seed}, {"count", o.count},
+        {"generator_version", kGeneratorVersion}, {"split", o.split}, {"first_index", o.seed}, {"count", o.count},
         {"view_size", {o.width, o.height}}, {"envmap_size", {o.envWidth, o.envHeight}},
         {"envmaps_per_example", o.envmapsPerExample}, {"supersample", o.supersample},
         {"bake", {{"texel_size", o.bake.texelSize}, {"max_texels", o.bake.maxTexels},

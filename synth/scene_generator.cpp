@@ -30,13 +30,40 @@ Vec3d randomColor(Random& rng, double minValue = 0.25, double maxValue = 0.9) {
 
 Texture randomTexture(Random& rng) {
     Texture t;
-    t.kind = TextureKind(rng.integer(0, 4));
+    t.kind = TextureKind(rng.integer(0, 7));
     t.colorA = randomColor(rng);
     t.colorB = t.colorA * rng.uniform(0.35, 0.8);  // same hue, darker: readable patterns
     if (rng.chance(0.4)) t.colorB = randomColor(rng);
     t.scale = rng.uniform(0.1, 0.8);
     t.noiseSeed = uint32_t(rng.next());
+    if (t.kind == TextureKind::Brick) {
+        // Bricks 0.25-0.5 m long (with their mortar), mostly red-brown in light grey mortar.
+        if (rng.chance(0.7)) t.colorA = hsvToLinear(rng.uniform(0.0, 0.08), rng.uniform(0.4, 0.8), rng.uniform(0.45, 0.8));
+        t.colorB = hsvToLinear(rng.uniform(), rng.uniform(0.0, 0.1), rng.uniform(0.6, 0.85));
+        t.scale = rng.uniform(0.25, 0.5);
+    }
     return t;
+}
+
+// Furniture surfaces, as in the evaluation rooms: mostly diffuse, some glossy (varnish,
+// plastic: F0 = 0.04, a mirror-like clear coat or a blurred one) and some metallic (tinted
+// F0, a dark diffuse remainder). Metals replace the texture's colours.
+void randomMaterial(Random& rng, Primitive& p) {
+    const double u = rng.uniform();
+    if (u < 0.6) return;
+    Material& m = p.material;
+    m.roughness = rng.chance(0.5) ? 0.0 : rng.uniform(0.04, 0.25);
+    if (u < 0.8) {
+        m.kind = MaterialKind::Glossy;
+        m.f0 = Vec3d(0.04);
+        return;
+    }
+    m.kind = MaterialKind::Metal;
+    // Steel and aluminium (grey), brass, gold and copper (warm): 0.5-0.95 reflectance.
+    m.f0 = hsvToLinear(rng.uniform(0.02, 0.14), rng.chance(0.5) ? rng.uniform(0.0, 0.1) : rng.uniform(0.3, 0.6),
+                       rng.uniform(0.73, 0.97));
+    p.texture = Texture{};
+    p.texture.colorA = p.texture.colorB = m.f0 * 0.05;
 }
 
 Texture woodTexture(Random& rng) {
@@ -79,6 +106,14 @@ Primitive wallQuad(const RoomSize& room, int face, double along, double alongHal
     return q;
 }
 
+// Emitted radiance ranges (linear, before auto-exposure; panoramas peak at 50 after
+// clipping, their skies at 1-10): [min, max].
+constexpr double kPanelRadiance[2] = {30, 150};       // ceiling panels, 0.09-1 m^2
+constexpr double kLampRadiance[2] = {150, 900};       // hanging spheres, 5-15 cm radius
+constexpr double kWindowPanelRadiance[2] = {20, 100}; // uniform windows
+constexpr double kPanoramaScale[2] = {1.0, 3.0};      // multiplier of a window's panorama
+constexpr double kBrightPanelWindowChance = 0.15;
+
 double wallLength(const RoomSize& room, int face) { return face < 2 ? room.depth : room.width; }
 
 struct Footprint {
@@ -99,7 +134,9 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
     Random rng(seed);
     Scene scene;
     scene.seed = seed;
-    const RoomSize room{rng.uniform(3, 10), rng.uniform(3, 10), rng.uniform(2.4, 3.5)};
+    scene.generatorVersion = kGeneratorVersion;
+    // The ranges of the evaluation rooms (Blender scenes): 3-8 m wide, 4-10 m deep.
+    const RoomSize room{rng.uniform(3, 8), rng.uniform(4, 10), rng.uniform(2.4, 3.5)};
 
     // The room: walls share one texture, the floor is wood or patterned, the ceiling plain.
     Primitive shell;
@@ -133,34 +170,29 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
         const double halfHeight = rng.uniform(0.4, std::min(0.8, (room.height - 1.1) / 2));
         const double sill = rng.uniform(0.7, std::max(0.71, room.height - 2 * halfHeight - 0.2));
         Primitive q = wallQuad(room, face, along, halfWidth, -(sill + halfHeight), halfHeight);
+        q.label = "window";
+        ++w;
+        if (rng.chance(kBrightPanelWindowChance)) {
+            // Frosted glass or a light box: a bright uniform panel, white to slightly cool.
+            q.emission = Emission::Constant;
+            q.radiance = Vec3d(0.9, 0.95, 1.0) * rng.uniform(kWindowPanelRadiance[0], kWindowPanelRadiance[1]);
+            scene.primitives.push_back(q);
+            continue;
+        }
         q.emission = Emission::Window;
         q.window = int(scene.windows.size());
-        q.label = "window";
         scene.primitives.push_back(q);
         WindowView view;
         view.panorama = panoramas[rng.integer(0, int(panoramas.size()) - 1)];
         view.yaw = rng.uniform(0, 2 * M_PI);
-        view.scale = rng.uniform(0.6, 1.6);
+        view.scale = rng.uniform(kPanoramaScale[0], kPanoramaScale[1]);
         view.viewCentre = shell.centre;
         scene.windows.push_back(view);
-        ++w;
     }
 
-    // Ceiling panels: 0-2 warm or cool emissive rectangles.
-    for (int i = 0, n = rng.integer(0, 2); i < n; ++i) {
-        const double hx = rng.uniform(0.2, 0.6), hz = rng.uniform(0.2, 0.6);
-        Primitive q = wallQuad(room, 2, rng.uniform(-room.width / 2 + hx + 0.2, room.width / 2 - hx - 0.2), hx,
-                               rng.uniform(-room.depth / 2 + hz + 0.2, room.depth / 2 - hz - 0.2), hz);
-        q.emission = Emission::Constant;
-        const double warmth = rng.uniform(0, 1);
-        q.radiance = Vec3d(1.0, 0.92 - 0.12 * warmth + 0.05, 0.85 - 0.3 * warmth + 0.1) * rng.uniform(3, 10);
-        q.label = "panel";
-        scene.primitives.push_back(q);
-    }
-
-    // Furniture on the floor: 3-12 boxes, cylinders and spheres, apart from each other.
+    // Furniture on the floor: 3-10 boxes, cylinders and spheres, apart from each other.
     std::vector<Footprint> placed;
-    const int furniture = rng.integer(3, 12);
+    const int furniture = rng.integer(3, 10);
     for (int i = 0, tries = 0; i < furniture && tries < 200; ++tries) {
         Primitive p;
         const int kind = rng.integer(0, 9);  // 60% boxes, 25% cylinders, 15% spheres
@@ -187,33 +219,53 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
         placed.push_back(f);
         p.centre = Vec3d(f.x, -height, f.z);
         p.texture = rng.chance(0.3) ? woodTexture(rng) : randomTexture(rng);
+        randomMaterial(rng, p);
         scene.primitives.push_back(p);
         ++i;
     }
 
-    // Lamps: 0-2 emissive spheres hanging below the ceiling.
-    for (int i = 0, n = rng.integer(0, 2); i < n; ++i) {
-        Primitive lamp;
-        lamp.shape = Shape::Sphere;
-        lamp.half = Vec3d(rng.uniform(0.08, 0.18), 0, 0);
-        lamp.centre = Vec3d(rng.uniform(-room.width / 2 + 0.5, room.width / 2 - 0.5),
-                            -room.height + rng.uniform(0.35, 0.8),
-                            rng.uniform(-room.depth / 2 + 0.5, room.depth / 2 - 0.5));
-        lamp.emission = Emission::Constant;
-        lamp.radiance = Vec3d(1.0, 0.85, 0.65) * rng.uniform(5, 20);
-        lamp.label = "lamp";
-        scene.primitives.push_back(lamp);
+    // Ceiling lights: 1-3, each an emissive panel on the ceiling or a small sphere hanging
+    // below it, warm to neutral white. Their radiance is a multiple of the room's exposure-
+    // normalised brightness, so that after auto-exposure the brightest envmap pixels reach
+    // tens to hundreds, as in the evaluation rooms.
+    for (int i = 0, n = rng.integer(1, 3); i < n; ++i) {
+        const double warmth = rng.uniform(0, 1);
+        const Vec3d white(1.0, 0.97 - 0.12 * warmth, 0.95 - 0.3 * warmth);
+        if (rng.chance(0.5)) {
+            const double hx = rng.uniform(0.15, 0.5), hz = rng.uniform(0.15, 0.5);
+            Primitive q = wallQuad(room, 2, rng.uniform(-room.width / 2 + hx + 0.2, room.width / 2 - hx - 0.2), hx,
+                                   rng.uniform(-room.depth / 2 + hz + 0.2, room.depth / 2 - hz - 0.2), hz);
+            q.emission = Emission::Constant;
+            q.radiance = white * rng.uniform(kPanelRadiance[0], kPanelRadiance[1]);
+            q.label = "panel";
+            scene.primitives.push_back(q);
+        } else {
+            Primitive lamp;
+            lamp.shape = Shape::Sphere;
+            lamp.half = Vec3d(rng.uniform(0.05, 0.15), 0, 0);
+            lamp.centre = Vec3d(rng.uniform(-room.width / 2 + 0.5, room.width / 2 - 0.5),
+                                -room.height + rng.uniform(0.3, 0.8),
+                                rng.uniform(-room.depth / 2 + 0.5, room.depth / 2 - 0.5));
+            lamp.emission = Emission::Constant;
+            lamp.radiance = white * rng.uniform(kLampRadiance[0], kLampRadiance[1]);
+            lamp.label = "lamp";
+            scene.primitives.push_back(lamp);
+        }
     }
 
-    // The reference camera: standing height, away from walls and furniture, looking roughly
-    // level. Its pose defines the world frame.
+    // The reference camera: standing height (1.2-1.8 m), in the back half of the room along
+    // its depth, away from the side walls, furniture and lamps, looking roughly down the
+    // room's depth (yaw within +-35 degrees of it, either way along z) and roughly level.
+    // Its pose defines the world frame.
+    const bool facingMinusZ = rng.chance(0.5);
     Vec3d eye(0.0);
     for (int tries = 0; tries < 200; ++tries) {
-        eye = Vec3d(rng.uniform(-room.width / 2 + 0.5, room.width / 2 - 0.5), -rng.uniform(1.2, 1.7),
-                    rng.uniform(-room.depth / 2 + 0.5, room.depth / 2 - 0.5));
+        const double back = -room.depth / 2 + rng.uniform(0.5, 0.45 * room.depth);
+        eye = Vec3d(rng.uniform(-0.35, 0.35) * room.width, -rng.uniform(1.2, 1.8), facingMinusZ ? -back : back);
         if (scene.distanceToSolid(eye) > 0.5) break;
     }
-    const Mat3d camToRoom = rotationY(rng.uniform(0, 2 * M_PI)) * rotationX(rng.uniform(-0.17, 0.09));
+    const double yaw = rng.uniform(-kCameraYawSpread, kCameraYawSpread) + (facingMinusZ ? M_PI : 0.0);
+    const Mat3d camToRoom = rotationY(yaw) * rotationX(rng.uniform(-0.17, 0.09));
     const Mat3d roomToWorld = camToRoom.transpose();
     for (Primitive& p : scene.primitives) {
         p.centre = roomToWorld * (p.centre - eye);

@@ -1,14 +1,24 @@
-// Procedural indoor scenes (issue 3): a room of 3-10 m with textured walls, floor and
-// ceiling, 1-3 windows showing HDR panoramas, emissive panels and lamps, 3-12 pieces of
-// furniture, and a stereo rig placed inside it. Deterministic by seed.
+// Procedural indoor scenes shaped after the evaluation rooms: 3-8 m wide (x), 4-10 m deep (z),
+// 2.4-3.5 m high, with textured walls, floor and ceiling, 1-3 windows showing HDR panoramas,
+// emissive panels and lamps, 3-10 pieces of furniture, and a stereo rig standing in the back
+// half of the room looking down its depth. Deterministic by seed.
 #pragma once
 
 #include "synth/scene.h"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 namespace lh::synth {
+
+// Written into Scene::generatorVersion and the data set's manifest; bumped whenever the same
+// seed would give a different scene. Version 2: evaluation-shaped rooms and camera, brick,
+// bands and rings, 1-3 ceiling lights, bright-panel windows, glossy and metallic furniture.
+constexpr int kGeneratorVersion = 2;
+
+// Half-range of the reference camera's yaw about the room's depth axis, radians (35 degrees).
+constexpr double kCameraYawSpread = 35.0 * M_PI / 180.0;
 
 struct Rig {
     PinholeCamera ref;  // at the world origin with identity rotation (the world frame)

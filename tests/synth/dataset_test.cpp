@@ -105,6 +105,47 @@ TEST(SynthDataset, StereoPairSatisfiesEpipolarGeometry) {
     EXPECT_GT(agree, 0.75 * checked);
 }
 
+// The pictures are HDR in the EXRs and clipped at 1 in the 8-bit sRGB PNGs. Some of the
+// first few training examples see a lamp or panel in ref; there the EXR exceeds 1 and the PNG
+// is white, and everywhere the PNG is the EXR's sRGB value to 8 bits.
+TEST(SynthDataset, PngClipsAtOneWhereTheExrShowsAVisibleLamp) {
+    const fs::path dir = freshDir("clip");
+    const SynthOptions o = smallOptions(dir.string());
+    PanoramaLibrary panoramas(o.hdriDir);
+    bool sawEmitter = false;
+    for (uint64_t index = 0; index < 8 && !sawEmitter; ++index) {
+        const fs::path x = dir / std::to_string(index);
+        writeExample(exampleSeed("train", index), x.string(), o, panoramas);
+        const ImageRGB exr = readImage((x / "ref.exr").string()), png = readImage((x / "ref.png").string());
+        ASSERT_EQ(exr.pixels.size(), png.pixels.size());
+        std::size_t brightest = 0;
+        for (std::size_t i = 0; i < exr.pixels.size(); ++i) {
+            const float v = exr.pixels[i];
+            if (v > exr.pixels[brightest]) brightest = i;
+            if (v >= 1.f) ASSERT_EQ(png.pixels[i], 1.f) << i;
+            else ASSERT_NEAR(srgbEncode(png.pixels[i]), srgbEncode(std::max(v, 0.f)), 0.51 / 255) << i;
+        }
+        if (exr.pixels[brightest] < 2.f) continue;
+        // The brightest pixel shows an emitter: a lamp, a panel or a window.
+        const Scene scene = loadScene((x / "scene.json").string());
+        const CamerasFile cams = loadCamerasFile((x / "cameras.json").string());
+        const int px = int(brightest / 3 % exr.width), py = int(brightest / 3 / exr.width);
+        const RayTracer tracer(scene);
+        BakeOptions cheap;
+        cheap.maxTexels = 500;
+        cheap.gatherRays = 1;
+        cheap.lightSamples = 1;
+        cheap.bounces = 0;
+        const RadianceField field(scene, tracer, panoramas, cheap);
+        for (int dy = -1; dy <= 1; ++dy)  // the emitter may cover only part of the pixel
+            for (int dx = -1; dx <= 1; ++dx) {
+                const RayHit hit = tracer.intersect(cams.ref.position, cams.ref.pixelDirection(px + 0.5 + 0.5 * dx, py + 0.5 + 0.5 * dy), 0.0);
+                sawEmitter |= hit.hit && field.isEmitting(hit.point);
+            }
+    }
+    EXPECT_TRUE(sawEmitter);
+}
+
 // The oracle of a room whose walls all glow with L renders (almost) exactly L: only the
 // volume's own edges could differ, and the room lies well inside it.
 TEST(SynthOracle, UniformRoomIsReproducedAlmostExactly) {
@@ -121,9 +162,11 @@ TEST(SynthOracle, UniformRoomIsReproducedAlmostExactly) {
     EXPECT_GT(psnr(env, truth), 40.0);
 }
 
-// A generated room at 5 x 64^3: geometry and textures are blurred to the voxel size, so the
-// ceiling is far from perfect, but 24 dB (about 6% RMS error on sRGB values) must hold; we
-// measured 26-29 dB on such rooms.
+// A generated room at 5 x 64^3: geometry and textures (fine brick mortar, bands and rings
+// among them) are blurred to the voxel size, so the ceiling is far from perfect, but 22 dB
+// (about 8% RMS error on sRGB values) must hold; we measured 23-33 dB on such rooms, except
+// where the room reaches beyond the layout's level 0 (a cube of twice the far depth about
+// the camera: 16 dB on a 7.5 m wide room seen 3 m deep).
 TEST(SynthOracle, GeneratedRoomReachesTheCeilingThreshold) {
     const fs::path dir = freshDir("oracle");
     SynthOptions o = smallOptions(dir.string());
@@ -140,7 +183,7 @@ TEST(SynthOracle, GeneratedRoomReachesTheCeilingThreshold) {
     const LightingVolume volume = oracleVolume(scene, field, VolumeLayout::fromFarDepth(*cams.far));
     const ImageRGB env = renderEnvmap(RenderVolume(volume), cams.envmaps[0].position, {120, 60, MarchOptions{}});
     const ImageRGB truth = readImage((dir / "x" / "env_0.exr").string());
-    EXPECT_GT(psnr(env, truth), 24.0);
+    EXPECT_GT(psnr(env, truth), 22.0);
     EXPECT_LT(angularErrorDegrees(env, truth), 10.0);
 }
 
