@@ -67,6 +67,12 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("--supersample", o->synth.supersample, "Rays per pixel and axis")->capture_default_str();
     cmd->add_option("--texel", o->synth.bake.texelSize, "Irradiance texel size, metres")->capture_default_str();
     cmd->add_option("--gather", o->synth.bake.gatherRays, "Gather rays per texel")->capture_default_str();
+    cmd->add_option("--oracle-levels", o->synth.oracleLevels,
+                    "Also write each example's oracle volume (oracle.vdb) with this many levels (0: none); "
+                    "the target of train's voxel supervision")
+        ->capture_default_str();
+    cmd->add_option("--oracle-res", o->synth.oracleResolution, "Voxels per side of each oracle level")
+        ->capture_default_str();
     cmd->add_option("--hdri-dir", o->synth.hdriDir, "Folder of equirectangular .exr panoramas for windows")
         ->capture_default_str();
     cmd->callback([o] { runSynth(*o); });

@@ -5,7 +5,9 @@
 #include "render/contact_sheet.h"
 #include "render/image_io.h"
 #include "core/random.h"
+#include "synth/oracle.h"
 #include "synth/scene_generator.h"
+#include "vdb/volume_io.h"
 #include "synth/scene_json.h"
 #include "synth/scene_render.h"
 
@@ -83,6 +85,8 @@ void SynthOptions::validate() const {
     if (envmapsPerExample < 1 || envmapsPerExample > 16) throw InputError("--envmaps must be in [1, 16]");
     if (supersample < 1 || supersample > 8) throw InputError("--supersample must be in [1, 8]");
     if (out.empty()) throw InputError("--out is required");
+    if (oracleLevels < 0 || oracleLevels > 8) throw InputError("--oracle-levels must be in [0, 8]");
+    if (oracleLevels > 0) VolumeLayout{20.0, oracleLevels, oracleResolution}.validate();
 }
 
 uint64_t exampleSeed(const std::string& split, uint64_t index) {
@@ -160,6 +164,12 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             }
             writeTextFile(file("cameras.json"), camerasToJson(cameras));
             writeTextFile(file("scene.json"), sceneToJson(scene, o.bake));
+            if (o.oracleLevels > 0) {
+                const VolumeLayout layout = VolumeLayout::fromFarDepth(*cameras.far, o.oracleLevels, o.oracleResolution);
+                VolumeSaveOptions half;
+                half.halfPrecision = true;
+                saveVolume(file("oracle.vdb"), oracleVolume(scene, field, layout), half);
+            }
             fs::remove_all(final);
             fs::rename(temp, final);
             summary.seed = sceneSeed;

@@ -7,6 +7,7 @@
 //   contact_sheet.png             ref | src | env_0 of the first examples
 //   000000/ ref.exr ref.png src.exr src.png tgt.exr tgt.png depth.exr
 //           env_<k>.exr env_<k>.png env_<k>_mask.png env_<k>_pos.exr cameras.json scene.json
+//           [oracle.vdb]                  with --oracle: the voxelised true scene (half floats)
 #pragma once
 
 #include "synth/radiance_field.h"
@@ -28,6 +29,11 @@ struct SynthOptions {
     int supersample = 2;  // per axis, for views and envmaps
     std::string hdriDir;
     BakeOptions bake;
+    // The oracle lighting volume (oracle.h) per example as oracle.vdb, in the layout of the
+    // example's far depth with this many levels of oracleResolution^3 (0: none). It is the
+    // target of the network's direct (voxel) supervision.
+    int oracleLevels = 0;
+    int oracleResolution = 64;
 
     void validate() const;  // throws InputError / ResourceError
 };
