@@ -20,6 +20,7 @@ struct PredictOptions {
     std::string ref, src, cameras, model, output, device = "cpu";
     std::vector<std::string> envmapsAt;
     std::string envmapSize = "240x120";
+    float pruneAlpha = net::kDefaultPruneAlpha;
 };
 
 void runPredict(const PredictOptions& o, int threads) {
@@ -37,6 +38,7 @@ void runPredict(const PredictOptions& o, int threads) {
     po.model = o.model;
     po.device = o.device;
     po.threads = threads;
+    po.pruneAlpha = o.pruneAlpha;
     const net::Predictor predictor(po);
     const net::NetConfig& config = predictor.config();
     std::cerr << "predict: model '" << (o.model.empty() ? net::defaultModelPath() : o.model) << "' (config "
@@ -81,7 +83,10 @@ void addPredictCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--src", o->src, "Second image of the stereo pair")->required();
     cmd->add_option("--cameras", o->cameras, "cameras.json with ref and src (near/far optional: estimated if absent)")
         ->required();
-    cmd->add_option("--model", o->model, "Model file (default: the bundled small model)");
+    cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
+    cmd->add_option("--prune-alpha", o->pruneAlpha,
+                    "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly all)")
+        ->capture_default_str();
     cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (untested here)")
         ->capture_default_str();
     cmd->add_option("--envmap-at", o->envmapsAt, "Also render envmaps at these points X,Y,Z (next to the output)");

@@ -1,4 +1,4 @@
-// `lighthouse train --data DIR --config small --out model.pt`
+// `lighthouse train --data DIR [--config standard] --out model.pt [--checkpoint PATH] [--init MODEL]`
 #include "cli/commands.h"
 #include "cli/net_commands.h"
 #include "net/trainer.h"
@@ -12,9 +12,23 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     CLI::App* cmd = app.add_subcommand("train", netCommandDescription("train"));
     cmd->add_option("--data", o->data, "Training split written by `lighthouse synth --split train`")->required();
     cmd->add_option("--val", o->validation, "Held-out scenes for validation (default: the last 5% of --data)");
-    cmd->add_option("--config", o->config, "small or paper")->capture_default_str();
-    cmd->add_option("--out", o->out, "Model file; OUT.checkpoint, OUT.csv and OUT.png are written next to it")
+    cmd->add_option("--config", o->config, "standard (5 x 64^3 from 192x144, 32 planes, HDR), paper, or small")
         ->capture_default_str();
+    cmd->add_option("--out", o->out, "Model file; OUT.csv and OUT.png (training curves) are written next to it")
+        ->capture_default_str();
+    cmd->add_option("--checkpoint", o->checkpoint,
+                    "Resumable training state, written atomically (default: OUT.checkpoint); keep it outside the "
+                    "repository so that a run can span sittings");
+    cmd->add_option("--init", o->init,
+                    "When no checkpoint exists: fine-tune from this model (same configuration) with a fresh optimiser");
+    cmd->add_option("--supervision", o->supervision,
+                    "direct: also the oracle volume (oracle.vdb, synth --oracle-levels) and the reference depth; "
+                    "paper: rendered views and envmaps only, the paper's staged schedule")
+        ->capture_default_str();
+    cmd->add_option("--stop-after", o->stopAfter,
+                    "End this sitting after N iterations, checkpointed; the same command resumes (0: run to the end)")
+        ->capture_default_str();
+    cmd->add_flag("!--no-augment", o->augment, "No exposure, white-balance and noise augmentation");
     cmd->add_option("--iterations", o->iterations, "Training iterations (batch 1)")->capture_default_str();
     cmd->add_option("--lr", o->learningRate, "Adam learning rate (divided by 10 for the last 20%)")
         ->capture_default_str();
@@ -28,7 +42,7 @@ void addTrainCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     cmd->add_option("--vgg", o->vggWeights,
                     "VGG-19 weights for the paper's perceptual loss (TorchScript; see net/vgg_loss.h); default: L1 + gradients");
-    cmd->add_flag("!--no-resume", o->resume, "Start afresh even if OUT.checkpoint exists");
+    cmd->add_flag("!--no-resume", o->resume, "Start afresh even if the checkpoint exists");
     cmd->callback([o, &threads] {
         o->threads = threads;
         net::train(*o, std::cerr);

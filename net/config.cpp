@@ -6,9 +6,8 @@
 
 namespace lh::net {
 
-// Sized for 2 CPU cores (no oneDNN in Debian's libtorch, so 3D convolutions run as im2col +
-// BLAS, whose im2col traffic dominates): a 64x48 input, half the paper's widths and
-// 4 x 16^3 cubes. About 1 iteration per second with the envmap loss on this machine.
+// The first bundled model's sizes: a 64x48 input, half the paper's widths and 4 x 16^3 cubes,
+// sigmoid colours. Kept so that models trained with it still load and run.
 NetConfig NetConfig::small() {
     NetConfig c;
     c.name = "small";
@@ -20,6 +19,31 @@ NetConfig NetConfig::small() {
     c.baseWidth = 4;
     c.trainEnvWidth = 60;
     c.trainEnvHeight = 30;
+    c.samplesPerLevel = 48;
+    return c;
+}
+
+// The default: the paper's 5 x 64^3 layout from a 4:3 input of 192x144 with 32 planes. What
+// makes it train on 2 CPU cores: the MPI network is 2D over the plane-sweep volume (a 3D U-Net
+// over 32 x 144 x 192 costs about 10x more per iteration), and the completion networks run at
+// 32^3 (8x fewer voxels than 64^3) with base width 4 (width 8 doubled the step's time:
+// lighthouse_train_step_bench); the MPI's own full-resolution detail reaches the volume
+// through their blend weight.
+NetConfig NetConfig::standard() {
+    NetConfig c;
+    c.name = "standard";
+    c.width = 192;
+    c.height = 144;
+    c.planes = 32;
+    c.levels = 5;
+    c.resolution = 64;
+    c.baseWidth = 4;
+    c.mpiNetwork = "2d";
+    c.mpiWidth = 32;
+    c.completionScale = 2;
+    c.hdr = true;
+    c.trainEnvWidth = 120;
+    c.trainEnvHeight = 60;
     c.samplesPerLevel = 48;
     return c;
 }
@@ -36,13 +60,15 @@ NetConfig NetConfig::paper() {
     c.trainEnvWidth = 240;
     c.trainEnvHeight = 120;
     c.samplesPerLevel = 128;  // the paper's 128 spheres per level
+    c.hdr = true;
     return c;
 }
 
 NetConfig NetConfig::byName(const std::string& name) {
+    if (name == "standard") return standard();
     if (name == "small") return small();
     if (name == "paper") return paper();
-    throw InputError("unknown configuration '" + name + "' (expected 'small' or 'paper')");
+    throw InputError("unknown configuration '" + name + "' (expected 'standard', 'small' or 'paper')");
 }
 
 void NetConfig::validate() const {
@@ -60,6 +86,11 @@ void NetConfig::validate() const {
     if (trainEnvWidth != 2 * trainEnvHeight || trainEnvHeight < 1)
         throw InputError("training envmap size must be W x H with W = 2 H");
     if (samplesPerLevel < 4 || samplesPerLevel > 1024) throw InputError("samples per level must be in [4, 1024]");
+    if (mpiNetwork != "2d" && mpiNetwork != "3d") throw InputError("MPI network must be '2d' or '3d', got '" + mpiNetwork + "'");
+    if (mpiWidth < 4 || mpiWidth > 256) throw InputError("MPI network width must be in [4, 256]");
+    if (completionScale != 1 && completionScale != 2) throw InputError("completion scale must be 1 or 2");
+    if (completionResolution() % 16 != 0)
+        throw InputError("the completion networks' resolution (cube resolution / completion scale) must be a multiple of 16");
 }
 
 std::string NetConfig::toJson() const {
@@ -72,7 +103,11 @@ std::string NetConfig::toJson() const {
                               {"base_width", baseWidth},
                               {"train_env_width", trainEnvWidth},
                               {"train_env_height", trainEnvHeight},
-                              {"samples_per_level", samplesPerLevel}};
+                              {"samples_per_level", samplesPerLevel},
+                              {"mpi_network", mpiNetwork},
+                              {"mpi_width", mpiWidth},
+                              {"completion_scale", completionScale},
+                              {"hdr", hdr}};
     return j.dump();
 }
 
@@ -90,6 +125,11 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.trainEnvWidth = j.at("train_env_width").get<int>();
         c.trainEnvHeight = j.at("train_env_height").get<int>();
         c.samplesPerLevel = j.at("samples_per_level").get<int>();
+        // Keys added after the first models: their absence means the first models' design.
+        c.mpiNetwork = j.value("mpi_network", std::string("3d"));
+        c.mpiWidth = j.value("mpi_width", 32);
+        c.completionScale = j.value("completion_scale", 1);
+        c.hdr = j.value("hdr", false);
     } catch (const nlohmann::json::exception& e) {
         throw FileError(sourceName + ": network configuration is not valid: " + e.what());
     }

@@ -1,5 +1,9 @@
-// Sizes of the prediction pipeline. Two named configurations share every line of code:
-// `paper` (the paper's sizes) and `small` (sizes that train on 2 CPU cores in about an hour).
+// Sizes of the prediction pipeline. Three named configurations share every line of code:
+//   `standard` (the default): the paper's 5 x 64^3 volume from a 192x144 input with 32 planes,
+//              with a 2D MPI network over the plane-sweep volume and completion networks that
+//              run at 32^3 and are blended into the full-resolution cubes, HDR radiance;
+//   `paper`:   the paper's sizes and 3D networks throughout;
+//   `small`:   the first bundled model's sizes (64x48 input, 4 x 16^3, colours in [0, 1]).
 // Torch-free: the CLI and tests read it without libtorch.
 #pragma once
 
@@ -19,10 +23,22 @@ struct NetConfig {
     int trainEnvWidth = 60;
     int trainEnvHeight = 30;
     int samplesPerLevel = 64;
+    // The MPI network: "3d" (a 3D U-Net over planes x rows x columns, the paper's) or "2d" (a
+    // 2D U-Net whose channels are the plane-sweep volume's planes; far cheaper per pixel).
+    std::string mpiNetwork = "3d";
+    int mpiWidth = 32;  // first-stage channels of the 2D MPI network
+    // The completion networks run at resolution / completionScale voxels per side (1 or 2);
+    // at 2 their output is upsampled and blended into the full-resolution cube.
+    int completionScale = 1;
+    int completionResolution() const { return resolution / completionScale; }
+    // Colour activation: false: sigmoid, radiance in [0, 1]; true: HDR (net/hdr.h), unbounded
+    // positive radiance, and the MPI may brighten the photo where it saturates.
+    bool hdr = false;
 
     static NetConfig small();
     static NetConfig paper();
-    // "small" or "paper"; throws InputError otherwise.
+    static NetConfig standard();
+    // "standard", "small" or "paper"; throws InputError otherwise.
     static NetConfig byName(const std::string& name);
 
     // Throws InputError naming the bad size.

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "net/hdr.h"
 #include "net/mpi_resample.h"
 #include "net/psv.h"
 #include "net/tensor_image.h"
@@ -12,21 +13,61 @@
 
 namespace lh::net {
 
+namespace F = torch::nn::functional;
+
+namespace {
+
+// Input channels of the 2D MPI network for D planes: the reference image (3), the source
+// image warped onto every plane (3 D), and every plane's photo-consistency cost (D): the mean
+// absolute difference between the reference and the warped source.
+int mpi2dInputChannels(int planes) { return 3 + 4 * planes; }
+// Outputs: per plane an alpha and a blend-weight logit (2 D), then per pixel a background
+// colour (3) and the brightening of clipped photo pixels (1).
+int mpi2dOutputChannels(int planes) { return 2 * planes + 4; }
+
+}  // namespace
+
 LighthouseNetImpl::LighthouseNetImpl(const NetConfig& c) : config(c) {
     config.validate();
-    mpiNet = register_module("mpi_net", UNet3d(6, 5, c.baseWidth));
+    if (c.mpiNetwork == "2d")
+        mpiNet2d = register_module("mpi_net2d", UNet2d(mpi2dInputChannels(c.planes), mpi2dOutputChannels(c.planes), c.mpiWidth));
+    else
+        mpiNet = register_module("mpi_net", UNet3d(6, c.hdr ? 6 : 5, c.baseWidth));
+    // The 2D (standard) design also gives the completion networks voxel positions (3 channels).
+    const int positionChannels = c.mpiNetwork == "2d" ? 3 : 0;
     for (int k = 0; k < c.levels; ++k)
-        completion.push_back(
-            register_module("completion" + std::to_string(k), UNet3d(k == 0 ? 4 : 8, 5, c.baseWidth)));
+        completion.push_back(register_module("completion" + std::to_string(k),
+                                             UNet3d((k == 0 ? 4 : 8) + positionChannels, 5, c.baseWidth)));
 }
 
 torch::Tensor LighthouseNetImpl::predictMpi(const torch::Tensor& psv, const torch::Tensor& refLinear) {
-    const auto out = mpiNet(psv);  // [1, 5, D, H, W]
-    // Background = mean over planes; blend weight picks reference or background per plane.
-    const auto background = torch::sigmoid(out.narrow(1, 0, 3)).mean(2, /*keepdim=*/true);
-    const auto weight = torch::sigmoid(out.narrow(1, 3, 1));
-    const auto alpha = torch::sigmoid(out.narrow(1, 4, 1));
-    const auto rgb = weight * refLinear.unsqueeze(2) + (1.0 - weight) * background;
+    const int64_t d = psv.size(2), h = psv.size(3), w = psv.size(4);
+    torch::Tensor background, weight, alpha, boost;  // [1, 3|1, D|1, H, W]
+    if (mpiNet2d) {
+        const auto ref = psv.select(2, 0).narrow(1, 0, 3);                   // [1, 3, H, W]
+        const auto warped = psv.narrow(1, 3, 3);                              // [1, 3, D, H, W]
+        const auto cost = (warped - ref.unsqueeze(2)).abs().mean(1);          // [1, D, H, W]
+        const auto input = torch::cat({ref, warped.reshape({1, 3 * d, h, w}), cost}, 1);
+        const auto out = mpiNet2d(input);                                     // [1, 2D + 4, H, W]
+        alpha = torch::sigmoid(out.narrow(1, 0, d)).unsqueeze(1);
+        weight = torch::sigmoid(out.narrow(1, d, d)).unsqueeze(1);
+        const auto bgLogit = out.narrow(1, 2 * d, 3).unsqueeze(2);
+        background = config.hdr ? hdrActivation(bgLogit) : torch::sigmoid(bgLogit);
+        boost = out.narrow(1, 2 * d + 3, 1).unsqueeze(2);
+    } else {
+        const auto out = mpiNet(psv);  // [1, 5 or 6, D, H, W]
+        // Background = mean over planes; blend weight picks reference or background per plane.
+        const auto bgLogit = out.narrow(1, 0, 3);
+        background = (config.hdr ? hdrActivation(bgLogit) : torch::sigmoid(bgLogit)).mean(2, /*keepdim=*/true);
+        weight = torch::sigmoid(out.narrow(1, 3, 1));
+        alpha = torch::sigmoid(out.narrow(1, 4, 1));
+        if (config.hdr) boost = out.narrow(1, 5, 1).mean(2, /*keepdim=*/true);
+    }
+    auto refColour = refLinear.unsqueeze(2);  // [1, 3, 1, H, W]
+    // Where the photo clipped (lamps, windows) the truth is brighter than 1: the network may
+    // scale those pixels up by exp(softplus(boost)), and only those.
+    if (config.hdr) refColour = refColour * torch::exp(saturationWeight(refLinear).unsqueeze(2) * F::softplus(boost));
+    const auto rgb = weight * refColour + (1.0 - weight) * background;
     return torch::cat({rgb, alpha}, 1);
 }
 
@@ -39,12 +80,53 @@ torch::Tensor cropCoarserLevel(const torch::Tensor& coarser, int coarserLevel) {
     return crop.repeat_interleave(2, 2).repeat_interleave(2, 3).repeat_interleave(2, 4);
 }
 
-std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::Tensor>& inputs) {
+namespace {
+
+// A cube [1, 4k, R, R, R] of (rgb, alpha) groups as network features: HDR colours as
+// ln(1 + x), and at half resolution averaged in 2^3 blocks (colour weighted by alpha, so
+// that empty voxels do not darken the surfaces beside them).
+torch::Tensor completionFeatures(const torch::Tensor& cube, bool hdr, bool halve) {
+    std::vector<torch::Tensor> groups;
+    for (int64_t g = 0; g < cube.size(1) / 4; ++g) {
+        auto rgb = cube.narrow(1, 4 * g, 3), alpha = cube.narrow(1, 4 * g + 3, 1);
+        if (halve) {
+            const auto a = F::avg_pool3d(alpha, F::AvgPool3dFuncOptions(2));
+            rgb = F::avg_pool3d(rgb * alpha, F::AvgPool3dFuncOptions(2)) / a.clamp_min(1e-4);
+            alpha = a;
+        }
+        groups.push_back(hdr ? radianceFeature(rgb) : rgb);
+        groups.push_back(alpha);
+    }
+    return torch::cat(groups, 1);
+}
+
+}  // namespace
+
+std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::Tensor>& inputs,
+                                                       const VolumeLayout& layout) {
     std::vector<torch::Tensor> out;
+    const bool halve = config.completionScale == 2;
+    const VolumeLayout networkLayout{layout.s0, layout.levels, config.completionResolution()};
     for (size_t k = 0; k < inputs.size(); ++k) {
         const auto input = k == 0 ? inputs[k] : torch::cat({inputs[k], cropCoarserLevel(out.back(), int(k) - 1)}, 1);
-        const auto raw = completion[k](input);
-        const auto predicted = torch::sigmoid(raw.narrow(1, 0, 4));
+        auto features = completionFeatures(input, config.hdr, halve);
+        if (config.mpiNetwork == "2d") {
+            constexpr double kPositionUnit = 4.0;  // metres
+            const auto positions = (voxelCentres(networkLayout, int(k)) / kPositionUnit)
+                                       .permute({3, 0, 1, 2})
+                                       .unsqueeze(0)
+                                       .to(features.device(), torch::kFloat32);
+            features = torch::cat({features, positions}, 1);
+        }
+        auto raw = completion[k](features);  // [1, 5, r, r, r]
+        if (halve)
+            raw = F::interpolate(raw, F::InterpolateFuncOptions()
+                                          .size(std::vector<int64_t>{inputs[k].size(2), inputs[k].size(3), inputs[k].size(4)})
+                                          .mode(torch::kTrilinear)
+                                          .align_corners(false));
+        const auto colourLogit = raw.narrow(1, 0, 3);
+        const auto colour = config.hdr ? hdrActivation(colourLogit) : torch::sigmoid(colourLogit);
+        const auto predicted = torch::cat({colour, torch::sigmoid(raw.narrow(1, 3, 1))}, 1);
         const auto weight = torch::sigmoid(raw.narrow(1, 4, 1));
         out.push_back(weight * predicted + (1.0 - weight) * inputs[k]);
     }
@@ -56,8 +138,9 @@ PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) 
     const auto psv = planeSweepVolume(in.refEncoded, in.srcEncoded, in.ref, in.src, in.depths);
     result.mpi = predictMpi(psv, in.refLinear);
     for (int k = 0; k < in.layout.levels; ++k)
-        result.mpiCubes.push_back(resampleMpiToLevel(result.mpi, in.depths, in.ref, in.layout, k));
-    if (runCompletion) result.cubes = complete(result.mpiCubes);
+        result.mpiCubes.push_back(
+            resampleMpiToLevel(result.mpi, in.depths, in.ref, in.layout, k, config.hdr ? kMaxMpiRadiance : 1.0));
+    if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout);
     return result;
 }
 
@@ -80,7 +163,7 @@ PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const Pinhol
 void saveModel(LighthouseNet& net, const std::string& path) {
     torch::serialize::OutputArchive archive;
     archive.write("lighthouse_config", c10::IValue(net->config.toJson()));
-    archive.write("lighthouse_model_version", c10::IValue(int64_t(1)));
+    archive.write("lighthouse_model_version", c10::IValue(int64_t(2)));
     net->save(archive);
     const std::string temporary = path + ".partial";
     archive.save_to(temporary);

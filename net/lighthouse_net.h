@@ -5,6 +5,7 @@
 #include "core/camera.h"
 #include "net/config.h"
 #include "net/torch_pch.h"
+#include "net/unet2d.h"
 #include "net/unet3d.h"
 #include "render/image.h"
 #include "vdb/volume_layout.h"
@@ -31,13 +32,21 @@ struct PipelineOutput {
 struct LighthouseNetImpl : torch::nn::Module {
     explicit LighthouseNetImpl(const NetConfig& config);
     NetConfig config;
-    UNet3d mpiNet{nullptr};
+    UNet3d mpiNet{nullptr};      // config.mpiNetwork == "3d"
+    UNet2d mpiNet2d{nullptr};    // config.mpiNetwork == "2d"
     std::vector<UNet3d> completion;  // coarsest first
 
-    // The MPI from the plane-sweep volume [1, 6, D, H, W] and the linear reference image.
+    // The MPI from the plane-sweep volume [1, 6, D, H, W] and the linear reference image:
+    // per plane, alpha and a weight that blends the reference image (brightened where it
+    // clipped, HDR configurations only) with a predicted background colour.
     torch::Tensor predictMpi(const torch::Tensor& psv, const torch::Tensor& refLinear);
     // Completed levels, coarse to fine, each blended with its input cube by a predicted weight.
-    std::vector<torch::Tensor> complete(const std::vector<torch::Tensor>& inputCubes);
+    // The networks run at config.completionResolution(); below the cube resolution their
+    // outputs (colour, alpha, weight logits) are upsampled trilinearly before the blend.
+    // Besides the cubes, every network sees where its voxels are: their centres in the
+    // reference camera's frame in units of 4 m (so the floor below the camera, or the wall
+    // behind it, is at the same value on every level), for the `standard` design.
+    std::vector<torch::Tensor> complete(const std::vector<torch::Tensor>& inputCubes, const VolumeLayout& layout);
     PipelineOutput run(const PairInputs& inputs, bool runCompletion = true);
 };
 TORCH_MODULE(LighthouseNet);

@@ -87,3 +87,55 @@ int64_t zeroNonFiniteGradients(const std::vector<torch::Tensor>& parameters) {
 }
 
 }  // namespace lh::net
+
+namespace lh::net {
+
+torch::Tensor hdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& target) {
+    return (torch::log1p(predicted.clamp_min(0.0)) - torch::log1p(target.clamp_min(0.0))).abs().mean();
+}
+
+torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted, const std::vector<torch::Tensor>& target) {
+    constexpr double kAlphaFloor = 1e-4;
+    auto total = torch::zeros({}, predicted.front().options());
+    for (size_t k = 0; k < predicted.size(); ++k) {
+        const auto pa = predicted[k].narrow(1, 3, 1), ta = target[k].narrow(1, 3, 1);
+        const auto weight = 1.0 + 9.0 * ta;
+        // Binary cross-entropy: its gradient through a saturated sigmoid does not vanish, so a
+        // surface voxel whose alpha was pushed towards 0 by the empty space around it recovers.
+        const auto pc = pa.clamp(kAlphaFloor, 1.0 - kAlphaFloor);
+        const auto alphaError = -(ta * torch::log(pc) + (1.0 - ta) * torch::log1p(-pc));
+        // Colour where the oracle has a surface, whatever the predicted alpha: a premultiplied
+        // error would let a nearly transparent voxel chase the target with a huge colour.
+        const auto radianceError = ta * (torch::log1p(predicted[k].narrow(1, 0, 3).clamp_min(0.0)) -
+                                         torch::log1p(target[k].narrow(1, 0, 3))).abs().mean(1, true);
+        total = total + ((alphaError + radianceError) * weight).sum() / weight.sum();
+    }
+    return total / double(predicted.size());
+}
+
+torch::Tensor mpiExpectedDisparity(const torch::Tensor& mpi, const std::vector<double>& depths) {
+    const auto alpha = mpi.narrow(1, 3, 1).clamp(0.0, 1.0 - 1e-6);  // [1, 1, D, H, W]
+    const auto logClear = torch::log1p(-alpha);
+    // Transmittance in front of plane d: product of (1 - alpha) over the nearer planes d' > d.
+    const auto nearer = logClear.flip(2).cumsum(2).flip(2) - logClear;
+    const auto weights = torch::exp(nearer) * alpha;
+    std::vector<float> disparity;
+    for (double d : depths) disparity.push_back(float(1.0 / d));
+    const auto disp = torch::tensor(disparity).to(mpi.device()).view({1, 1, -1, 1, 1});
+    const auto remaining = torch::exp(logClear.sum(2));  // [1, 1, H, W]
+    return (weights * disp).sum(2) + remaining * (1.0 / depths.front());
+}
+
+torch::Tensor mpiDepthLoss(const torch::Tensor& mpi, const std::vector<double>& depths, const torch::Tensor& trueDepth) {
+    const double range = 1.0 / depths.back() - 1.0 / depths.front();
+    const auto truth = 1.0 / trueDepth.clamp_min(1e-3);
+    return (mpiExpectedDisparity(mpi, depths) - truth).abs().mean() / range;
+}
+
+torch::Tensor sparsityLoss(const std::vector<torch::Tensor>& cubes) {
+    auto total = torch::zeros({}, cubes.front().options());
+    for (const auto& c : cubes) total = total + c.narrow(1, 3, 1).mean();
+    return total / double(cubes.size());
+}
+
+}  // namespace lh::net

@@ -12,6 +12,28 @@ namespace lh::net {
 
 torch::Tensor imageLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
 
+// HDR image loss: mean |ln(1 + pred) - ln(1 + target)| over pixels and channels, on linear
+// radiance. Unlike imageLoss it sees how bright a lamp or window is (imageLoss clamps at 1).
+torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
+
+// Direct supervision of the cubes by the oracle's (net/oracle_targets.h), both [1, 4, R, R, R]
+// per level (rgb, voxel alpha): per level the L1 of alpha plus the L1 of ln(1 + alpha rgb)
+// (premultiplied radiance), each voxel weighted by 1 + 9 alpha_oracle so that the thin
+// surfaces are not outvoted by the empty space around them; the mean over levels.
+torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted, const std::vector<torch::Tensor>& target);
+
+// The MPI's depth against the reference view's true depth: the L1 of the composited
+// disparity (the remaining transmittance lands on the far plane) against 1 / depth, divided by
+// the planes' disparity range so that it is 1 for a prediction off by the whole range.
+// mpi [1, 4, D, H, W], planes far to near at `depths`; trueDepth [1, 1, H, W], metres.
+torch::Tensor mpiDepthLoss(const torch::Tensor& mpi, const std::vector<double>& depths, const torch::Tensor& trueDepth);
+
+// The MPI's expected disparity per pixel [1, 1, H, W] (used by mpiDepthLoss and its tests).
+torch::Tensor mpiExpectedDisparity(const torch::Tensor& mpi, const std::vector<double>& depths);
+
+// A sparsity prior for training without 3D ground truth: the mean voxel alpha of every cube.
+torch::Tensor sparsityLoss(const std::vector<torch::Tensor>& cubes);
+
 // A 4x4 convolution whose weight is divided by its largest singular value, estimated by one
 // power iteration per training forward pass (Miyato et al. 2018).
 struct SpectralConv2dImpl : torch::nn::Module {

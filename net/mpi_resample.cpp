@@ -21,7 +21,8 @@ torch::Tensor densityFromAlpha(const torch::Tensor& alpha, double voxelSize) {
 }
 
 torch::Tensor resampleMpiToLevel(const torch::Tensor& mpi, const std::vector<double>& depths,
-                                 const PinholeCamera& ref, const VolumeLayout& layout, int level) {
+                                 const PinholeCamera& ref, const VolumeLayout& layout, int level,
+                                 double maxRadiance) {
     const int64_t planes = mpi.size(2);
     const double nearDisparity = 1.0 / depths.back(), farDisparity = 1.0 / depths.front();
     const double disparityStep = (nearDisparity - farDisparity) / double(std::max<int64_t>(planes - 1, 1));
@@ -51,7 +52,7 @@ torch::Tensor resampleMpiToLevel(const torch::Tensor& mpi, const std::vector<dou
                                             .align_corners(false));  // [1, 4, R, R, R]
     const auto mask = inside.to(torch::kFloat32).to(mpi.device()).unsqueeze(0).unsqueeze(0);
     const auto mpiAlpha = sampled.narrow(1, 3, 1).clamp(0.0, kMaxVoxelAlpha);
-    const auto rgb = (sampled.narrow(1, 0, 3) / mpiAlpha.clamp_min(1e-6)).clamp(0.0, 1.0);
+    const auto rgb = (sampled.narrow(1, 0, 3) / mpiAlpha.clamp_min(1e-6)).clamp(0.0, maxRadiance);
     // Plane spacing (scene units) at each voxel's depth, then the voxel's own opacity.
     const auto spacing = (safeZ * safeZ * disparityStep).to(torch::kFloat32).to(mpi.device()).unsqueeze(0).unsqueeze(0);
     const auto voxelAlpha = 1.0 - torch::exp(torch::log1p(-mpiAlpha) * (layout.voxelSize(level) / spacing));

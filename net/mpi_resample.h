@@ -23,9 +23,15 @@ constexpr double kMaxVoxelAlpha = 1.0 - 1e-4;
 // World positions of level k's voxel centres, [R, R, R, 3] indexed [z, y, x], float64.
 torch::Tensor voxelCentres(const VolumeLayout& layout, int level);
 
+// Colour ceiling of resampled HDR MPIs: un-premultiplying by a tiny alpha must not invent
+// radiance brighter than any the MPI holds (net/hdr.h's largest is 8103).
+constexpr double kMaxMpiRadiance = 1e4;
+
 // mpi [1, 4, D, H, W] with planes far (0) to near (D-1) at `depths` -> level cube [1, 4, R, R, R].
+// Colours are clamped to [0, maxRadiance]: 1 for sigmoid models, kMaxMpiRadiance for HDR ones.
 torch::Tensor resampleMpiToLevel(const torch::Tensor& mpi, const std::vector<double>& depths,
-                                 const PinholeCamera& ref, const VolumeLayout& layout, int level);
+                                 const PinholeCamera& ref, const VolumeLayout& layout, int level,
+                                 double maxRadiance = 1.0);
 
 // sigma (per scene unit) of a cube's alpha channel.
 torch::Tensor densityFromAlpha(const torch::Tensor& alpha, double voxelSize);

@@ -35,11 +35,15 @@ void validateStereoPair(const StereoPair& pair) {
 struct Predictor::Impl {
     torch::Device device{torch::kCPU};
     LighthouseNet net{nullptr};
+    float pruneAlpha = kDefaultPruneAlpha;
 };
 
 Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<Impl>()) {
     setTorchThreads(options.threads);
     impl_->device = selectDevice(options.device);
+    if (!(options.pruneAlpha >= 0 && options.pruneAlpha < 1))
+        throw InputError("--prune-alpha must be in [0, 1)");
+    impl_->pruneAlpha = options.pruneAlpha;
     if (!options.untrainedConfig.empty()) {
         impl_->net = LighthouseNet(NetConfig::byName(options.untrainedConfig));
         impl_->net->to(impl_->device);
@@ -70,7 +74,7 @@ Prediction Predictor::predict(const StereoPair& pair) const {
                                              result.range.far, config, impl_->device);
     torch::NoGradGuard noGrad;
     const PipelineOutput out = impl_->net->run(inputs, true);
-    result.volume = cubesToVolume(out.cubes, inputs.layout);
+    result.volume = cubesToVolume(out.cubes, inputs.layout, impl_->pruneAlpha);
     result.mpiOnly = cubesToVolume(out.mpiCubes, inputs.layout);
     result.mpi = tensorToMpi(out.mpi, inputs.ref, inputs.depths);
     result.volume.refCamera = cams.ref;

@@ -36,6 +36,11 @@ struct Prediction {
     double seconds = 0;      // network time, wall clock
 };
 
+// Default pruning threshold of predicted volumes (voxel alpha): below it a voxel holds
+// optical depth under 0.01 and its light barely shows, while empty-space skipping needs the
+// voxels to be empty.
+constexpr float kDefaultPruneAlpha = 0.01f;
+
 struct PredictorOptions {
     std::string model;        // empty: the bundled model (models/small.pt)
     std::string device = "cpu";
@@ -43,6 +48,9 @@ struct PredictorOptions {
     // Timing only: random weights of this configuration ("small" or "paper") instead of a
     // model file, so both configurations can be timed without training the paper-sized one.
     std::string untrainedConfig;
+    // Voxels of the completed volume whose opacity over one voxel is below this are left
+    // empty; 0 keeps everything down to volume_export.h's 1e-4.
+    float pruneAlpha = kDefaultPruneAlpha;
 };
 
 // The bundled model's path.

@@ -3,18 +3,22 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/random.h"
+#include "net/augment.h"
 #include "net/curve_plot.h"
 #include "net/device.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
 #include "net/mpi_render.h"
+#include "net/oracle_targets.h"
 #include "net/tensor_image.h"
 #include "net/training_data.h"
 #include "net/vgg_loss.h"
 #include "net/volume_render.h"
 #include "render/contact_sheet.h"
+#include "render/image_io.h"
 #include "render/metrics.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -33,7 +37,10 @@ void TrainOptions::validate() const {
     if (validateEvery < 1 || checkpointEvery < 1 || logEvery < 1)
         throw InputError("--validate-every, --checkpoint-every and --log-every must be at least 1");
     if (validationScenes < 1) throw InputError("--validation-scenes must be at least 1");
-    NetConfig::byName(config).validate();
+    if (supervision != "direct" && supervision != "paper")
+        throw InputError("--supervision must be 'direct' or 'paper', got '" + supervision + "'");
+    if (stopAfter < 0) throw InputError("--stop-after must be at least 0");
+    (configOverride ? *configOverride : NetConfig::byName(config)).validate();
 }
 
 namespace {
@@ -41,14 +48,24 @@ namespace {
 constexpr double kStage2Start = 0.25, kStage3Start = 0.9, kLowLearningRateStart = 0.8;
 constexpr double kAdversarialWeight = 0.1, kGradientClipNorm = 5.0;
 
+constexpr double kSparsityWeight = 0.05;  // paper supervision only
+
 struct LogRow {
     int iteration = 0, stage = 1;
     double total = 0, view = 0, envmap = 0, adversarial = 0, discriminator = 0;
     double learningRate = 0, itPerSecond = 0;
     double valPsnr = NAN, valAngular = NAN;
+    double voxel = 0, depth = 0;
+    double secondsData = 0, secondsForward = 0, secondsBackward = 0;  // per iteration, mean
 };
 
-int stageAt(int iteration, int total) {
+constexpr const char* kLogHeader =
+    "iteration,stage,loss_total,loss_view,loss_envmap,loss_adversarial,loss_discriminator,lr,it_per_s,"
+    "val_psnr_db,val_angular_deg,loss_voxel,loss_depth,s_data,s_forward,s_backward";
+
+// Direct supervision runs every network from the start and has no adversarial stage.
+int stageAt(int iteration, int total, bool direct) {
+    if (direct) return 2;
     if (iteration >= int(kStage3Start * total)) return 3;
     if (iteration >= int(kStage2Start * total)) return 2;
     return 1;
@@ -66,7 +83,7 @@ void setLearningRate(torch::optim::Adam& optimizer, double lr) {
     for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
 }
 
-std::string checkpointPath(const TrainOptions& o) { return o.out + ".checkpoint"; }
+std::string checkpointPath(const TrainOptions& o) { return o.checkpointPath(); }
 
 void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
     torch::serialize::OutputArchive archive, net, disc, opt, discOpt;
@@ -80,6 +97,8 @@ void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
     archive.write("discriminator_optimizer", discOpt);
     archive.write("iteration", c10::IValue(int64_t(s.iteration)));
     archive.write("config", c10::IValue(s.net->config.toJson()));
+    const fs::path target(checkpointPath(o));
+    if (!target.parent_path().empty()) fs::create_directories(target.parent_path());
     const std::string temporary = checkpointPath(o) + ".partial";
     archive.save_to(temporary);
     fs::rename(temporary, checkpointPath(o));
@@ -112,30 +131,83 @@ bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
     return true;
 }
 
+std::vector<CurveSeries> nonEmpty(std::vector<CurveSeries> series) {
+    series.erase(std::remove_if(series.begin(), series.end(), [](const CurveSeries& c) { return c.x.empty(); }),
+                 series.end());
+    return series;
+}
+
+// The log rows of an earlier run of this training (its CSV), up to `lastIteration`, so that a
+// resumed run keeps whole curves. Columns are read by name: a CSV from before a column was
+// added leaves it at its default.
+std::vector<LogRow> readLog(const std::string& path, int lastIteration) {
+    std::vector<LogRow> rows;
+    std::ifstream csv(path);
+    std::string line;
+    if (!std::getline(csv, line)) return rows;
+    std::vector<std::string> names;
+    {
+        std::istringstream header(line);
+        for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+    }
+    const auto number = [](const std::string& text) { return text == "nan" ? NAN : std::atof(text.c_str()); };
+    while (std::getline(csv, line)) {
+        if (line.empty()) continue;
+        LogRow r;
+        std::istringstream row(line);
+        std::string field;
+        for (size_t i = 0; i < names.size() && std::getline(row, field, ','); ++i) {
+            const std::string& n = names[i];
+            const double v = number(field);
+            if (n == "iteration") r.iteration = int(v);
+            else if (n == "stage") r.stage = int(v);
+            else if (n == "loss_total") r.total = v;
+            else if (n == "loss_view") r.view = v;
+            else if (n == "loss_envmap") r.envmap = v;
+            else if (n == "loss_adversarial") r.adversarial = v;
+            else if (n == "loss_discriminator") r.discriminator = v;
+            else if (n == "lr") r.learningRate = v;
+            else if (n == "it_per_s") r.itPerSecond = v;
+            else if (n == "val_psnr_db") r.valPsnr = v;
+            else if (n == "val_angular_deg") r.valAngular = v;
+            else if (n == "loss_voxel") r.voxel = v;
+            else if (n == "loss_depth") r.depth = v;
+            else if (n == "s_data") r.secondsData = v;
+            else if (n == "s_forward") r.secondsForward = v;
+            else if (n == "s_backward") r.secondsBackward = v;
+        }
+        if (r.iteration <= lastIteration) rows.push_back(r);
+    }
+    return rows;
+}
+
 void writeLog(const TrainOptions& o, const std::vector<LogRow>& log) {
     std::ostringstream csv;
-    csv << "iteration,stage,loss_total,loss_view,loss_envmap,loss_adversarial,loss_discriminator,lr,it_per_s,"
-           "val_psnr_db,val_angular_deg\n";
+    csv << kLogHeader << '\n';
     for (const auto& r : log)
         csv << r.iteration << ',' << r.stage << ',' << r.total << ',' << r.view << ',' << r.envmap << ','
             << r.adversarial << ',' << r.discriminator << ',' << r.learningRate << ',' << r.itPerSecond << ','
-            << r.valPsnr << ',' << r.valAngular << '\n';
+            << r.valPsnr << ',' << r.valAngular << ',' << r.voxel << ',' << r.depth << ',' << r.secondsData << ','
+            << r.secondsForward << ',' << r.secondsBackward << '\n';
     writeTextFile(o.out + ".csv", csv.str());
-    CurveSeries total{"training loss (view + envmap + adversarial)", {}, {}};
+    CurveSeries total{"training loss (sum of the terms)", {}, {}};
     CurveSeries view{"held-out view loss", {}, {}}, env{"envmap loss", {}, {}};
+    CurveSeries voxel{"voxel loss (against the oracle)", {}, {}}, depth{"MPI depth loss", {}, {}};
     CurveSeries psnr{"validation envmap PSNR (dB), all content", {}, {}};
     CurveSeries angular{"validation RGB angular error (deg)", {}, {}};
     for (const auto& r : log) {
         total.x.push_back(r.iteration), total.y.push_back(r.total);
         view.x.push_back(r.iteration), view.y.push_back(r.view);
         if (r.stage >= 2) env.x.push_back(r.iteration), env.y.push_back(r.envmap);
+        if (r.voxel > 0) voxel.x.push_back(r.iteration), voxel.y.push_back(r.voxel);
+        if (r.depth > 0) depth.x.push_back(r.iteration), depth.y.push_back(r.depth);
         if (std::isfinite(r.valPsnr)) {
             psnr.x.push_back(r.iteration), psnr.y.push_back(r.valPsnr);
             angular.x.push_back(r.iteration), angular.y.push_back(r.valAngular);
         }
     }
     writeCurvePlot(o.out + ".png", "lighthouse train: " + fs::path(o.out).filename().string(), "iteration",
-                   {total, view, env, psnr, angular});
+                   nonEmpty({total, view, env, voxel, depth, psnr, angular}));
 }
 
 // Mean envmap PSNR and angular error (all content) of the current model on held-out scenes,
@@ -169,6 +241,58 @@ std::string formatDuration(double seconds) {
     return out.str();
 }
 
+// One training example as tensors, augmented, with the optional direct-supervision targets.
+struct PreparedExample {
+    PairInputs inputs;
+    PinholeCamera target;
+    torch::Tensor targetImage;                 // [1, 3, H, W] linear, the held-out view
+    torch::Tensor refDepth;                    // [1, 1, H, W] metres; undefined without depth.exr
+    std::vector<torch::Tensor> oracle;         // cubes; empty without oracle.vdb
+    std::vector<torch::Tensor> envmaps;        // [1, 3, h, w] linear HDR at the training size
+    std::vector<Vec3d> envmapPositions;
+};
+
+PreparedExample prepareExample(const std::string& directory, const NetConfig& config, const TrainOptions& o,
+                               Random& rng, const torch::Device& device, bool direct) {
+    TrainingExample ex = loadExample(directory);
+    Augmentation a;
+    if (o.augment) {
+        a = drawAugmentation(rng);
+        augmentPhoto(ex.ref, a, rng);
+        augmentPhoto(ex.src, a, rng);
+        augmentPhoto(ex.tgt, a, rng);
+        for (auto& e : ex.envmaps) augmentRadiance(e, a);
+    }
+    PreparedExample p;
+    p.inputs = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near, *ex.cameras.far,
+                              config, device);
+    p.target = ex.cameras.tgt->resized(config.width, config.height);
+    p.targetImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
+    for (size_t e = 0; e < ex.envmaps.size(); ++e) {
+        p.envmaps.push_back(
+            imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight)).to(device));
+        p.envmapPositions.push_back(ex.cameras.envmaps[e].position);
+    }
+    if (!direct) return p;
+    const fs::path dir(directory);
+    if (fs::is_regular_file(dir / "depth.exr"))
+        p.refDepth = imageToTensor(resizeImage(readImage((dir / "depth.exr").string()), config.width, config.height))
+                         .narrow(1, 0, 1)
+                         .to(device);
+    if (fs::is_regular_file(dir / "oracle.vdb")) {
+        p.oracle = loadOracleCubes((dir / "oracle.vdb").string(), p.inputs.layout, device);
+        const auto gains = torch::tensor({float(a.factor(0)), float(a.factor(1)), float(a.factor(2)), 1.f})
+                               .view({1, 4, 1, 1, 1})
+                               .to(device);
+        for (auto& c : p.oracle) c = c * gains;  // the scene's light, exposed and balanced as the photos
+    }
+    return p;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 void train(const TrainOptions& o, std::ostream& progress) {
@@ -176,6 +300,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
     setTorchThreads(o.threads);
     const torch::Device device = selectDevice(o.device);
     torch::manual_seed(o.seed);
+    const bool direct = o.supervision == "direct";
 
     std::vector<std::string> trainDirs = listExamples(o.data), validationDirs;
     if (!o.validation.empty()) {
@@ -192,7 +317,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
     if (!fs::path(o.out).parent_path().empty()) fs::create_directories(fs::path(o.out).parent_path());
 
     TrainingState s;
-    s.net = LighthouseNet(NetConfig::byName(o.config));
+    s.net = LighthouseNet(o.configOverride ? *o.configOverride : NetConfig::byName(o.config));
     s.net->to(device);
     s.discriminator = PatchDiscriminator();
     s.discriminator->to(device);
@@ -201,32 +326,24 @@ void train(const TrainOptions& o, std::ostream& progress) {
         s.discriminator->parameters(), torch::optim::AdamOptions(o.learningRate).betas({0.0, 0.9}));
     if (loadCheckpoint(o, s)) {
         progress << "train: resuming from " << checkpointPath(o) << " at iteration " << s.iteration << "\n";
-        // Earlier log rows come back from the CSV so the curves stay whole.
-        std::ifstream csv(o.out + ".csv");
-        std::string line;
-        std::getline(csv, line);
-        while (std::getline(csv, line)) {
-            LogRow r;
-            char comma;
-            std::istringstream row(line);
-            std::string vp, va;
-            row >> r.iteration >> comma >> r.stage >> comma >> r.total >> comma >> r.view >> comma >> r.envmap >>
-                comma >> r.adversarial >> comma >> r.discriminator >> comma >> r.learningRate >> comma >> r.itPerSecond >>
-                comma;
-            std::getline(row, vp, ',');
-            std::getline(row, va);
-            r.valPsnr = vp == "nan" ? NAN : std::atof(vp.c_str());
-            r.valAngular = va == "nan" ? NAN : std::atof(va.c_str());
-            if (r.iteration <= s.iteration) s.log.push_back(r);
-        }
+        s.log = readLog(o.out + ".csv", s.iteration);
+    } else if (!o.init.empty()) {
+        // Fine-tuning: the weights of a model of the same configuration, a fresh optimiser.
+        LighthouseNet start = loadModel(o.init, device);
+        if (start->config.toJson() != s.net->config.toJson())
+            throw InputError("--init '" + o.init + "' is a '" + start->config.name + "' model with other sizes than --config " + o.config);
+        torch::NoGradGuard noGrad;
+        const auto from = start->named_parameters();
+        for (auto& p : s.net->named_parameters()) p.value().copy_(from[p.key()]);
+        progress << "train: no checkpoint at " << checkpointPath(o) << "; fine-tuning from " << o.init
+                 << " with a fresh optimiser\n";
     }
     const NetConfig& config = s.net->config;
-    Random rng(mixSeed(o.seed, uint64_t(s.iteration)));  // a resumed run draws fresh examples
     progress << "train: config " << config.name << " (" << config.width << "x" << config.height << " input, "
              << config.planes << " planes, " << config.levels << " x " << config.resolution << "^3), "
              << trainDirs.size() << " training scenes, " << validationDirs.size() << " held out ("
              << validationScenes.size() << " validated), " << torch::get_num_threads() << " threads on "
-             << device.str() << "\n";
+             << device.str() << ", " << o.supervision << " supervision" << (o.augment ? ", augmented" : "") << "\n";
 
     std::unique_ptr<VggPerceptualLoss> vgg;
     if (!o.vggWeights.empty()) vgg = std::make_unique<VggPerceptualLoss>(o.vggWeights, device);
@@ -241,29 +358,43 @@ void train(const TrainOptions& o, std::ostream& progress) {
     auto windowStart = std::chrono::steady_clock::now();
     const auto runStart = windowStart;
     const int firstIteration = s.iteration;
-    for (; s.iteration < o.iterations; ++s.iteration) {
+    const int sittingEnd = o.stopAfter > 0 ? std::min(o.iterations, firstIteration + o.stopAfter) : o.iterations;
+    for (; s.iteration < sittingEnd; ++s.iteration) {
         const int it = s.iteration;
-        const int stage = stageAt(it, o.iterations);
+        const int stage = stageAt(it, o.iterations, direct);
         const double lr = it >= int(kLowLearningRateStart * o.iterations) ? o.learningRate / 10 : o.learningRate;
         setLearningRate(*s.optimizer, lr);
         setLearningRate(*s.discriminatorOptimizer, lr);
 
-        const TrainingExample ex = loadExample(trainDirs[size_t(rng.integer(0, int(trainDirs.size()) - 1))]);
-        const PairInputs in = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
-                                             *ex.cameras.far, config, device);
-        const PipelineOutput out = s.net->run(in, stage >= 2);
-        const PinholeCamera tgt = ex.cameras.tgt->resized(config.width, config.height);
-        const auto tgtImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
-        const auto viewLoss = lossOf(renderMpiView(out.mpi, in.depths, in.ref, tgt), tgtImage);
+        // Everything random in this iteration comes from (seed, iteration).
+        Random rng(mixSeed(o.seed, uint64_t(it)));
+        auto clock = std::chrono::steady_clock::now();
+        const std::string& dir = trainDirs[size_t(rng.integer(0, int(trainDirs.size()) - 1))];
+        const PreparedExample ex = prepareExample(dir, config, o, rng, device, direct);
+        const size_t e = size_t(rng.integer(0, int(ex.envmaps.size()) - 1));
+        window.secondsData += secondsSince(clock);
+
+        clock = std::chrono::steady_clock::now();
+        const PipelineOutput out = s.net->run(ex.inputs, stage >= 2);
+        const auto viewLoss = lossOf(renderMpiView(out.mpi, ex.inputs.depths, ex.inputs.ref, ex.target), ex.targetImage);
         auto loss = viewLoss;
         torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}), discLoss = torch::zeros({});
+        torch::Tensor voxLoss = torch::zeros({}), depthLoss = torch::zeros({});
+        if (ex.refDepth.defined()) {
+            depthLoss = mpiDepthLoss(out.mpi, ex.inputs.depths, ex.refDepth);
+            loss = loss + depthLoss;
+        }
         if (stage >= 2) {
-            const size_t e = size_t(rng.integer(0, int(ex.envmaps.size()) - 1));
-            const auto gt = imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight)).to(device);
-            const auto env = renderEnvmapTorch(out.cubes, in.layout, ex.cameras.envmaps[e].position, config.trainEnvWidth,
+            const auto& gt = ex.envmaps[e];
+            const auto env = renderEnvmapTorch(out.cubes, ex.inputs.layout, ex.envmapPositions[e], config.trainEnvWidth,
                                                config.trainEnvHeight, config.samplesPerLevel);
-            envLoss = lossOf(env, gt);
+            envLoss = lossOf(env, gt) + hdrImageLoss(env, gt);
             loss = loss + envLoss;
+            if (!ex.oracle.empty()) {
+                voxLoss = voxelLoss(out.cubes, ex.oracle);
+                loss = loss + voxLoss;
+            }
+            if (!direct) loss = loss + kSparsityWeight * sparsityLoss(out.cubes);
             if (stage >= 3) {
                 // Discriminator step on real vs (detached) predicted envmaps, then the generator term.
                 s.discriminatorOptimizer->zero_grad();
@@ -276,22 +407,27 @@ void train(const TrainOptions& o, std::ostream& progress) {
                 loss = loss + kAdversarialWeight * advLoss;
             }
         }
+        window.secondsForward += secondsSince(clock);
+        clock = std::chrono::steady_clock::now();
         s.optimizer->zero_grad();
         loss.backward();
         zeroNonFiniteGradients(s.net->parameters());
         torch::nn::utils::clip_grad_norm_(s.net->parameters(), kGradientClipNorm);
         s.optimizer->step();
         s.discriminator->zero_grad();  // the generator term left gradients in the discriminator
+        window.secondsBackward += secondsSince(clock);
 
         window.total += loss.item<double>();
         window.view += viewLoss.item<double>();
         window.envmap += envLoss.item<double>();
         window.adversarial += advLoss.item<double>();
         window.discriminator += discLoss.item<double>();
+        window.voxel += voxLoss.item<double>();
+        window.depth += depthLoss.item<double>();
         ++windowCount;
 
         const int done = it + 1;
-        const bool logNow = done % o.logEvery == 0 || done == o.iterations;
+        const bool logNow = done % o.logEvery == 0 || done == o.iterations || done == sittingEnd;
         const bool validateNow = done % o.validateEvery == 0 || done == o.iterations;
         if (logNow) {
             const auto now = std::chrono::steady_clock::now();
@@ -303,14 +439,22 @@ void train(const TrainOptions& o, std::ostream& progress) {
             row.envmap = window.envmap / windowCount;
             row.adversarial = window.adversarial / windowCount;
             row.discriminator = window.discriminator / windowCount;
+            row.voxel = window.voxel / windowCount;
+            row.depth = window.depth / windowCount;
+            row.secondsData = window.secondsData / windowCount;
+            row.secondsForward = window.secondsForward / windowCount;
+            row.secondsBackward = window.secondsBackward / windowCount;
             row.learningRate = lr;
             row.itPerSecond = windowCount / std::chrono::duration<double>(now - windowStart).count();
             if (validateNow) std::tie(row.valPsnr, row.valAngular) = validate(s.net, validationScenes, device);
             const double elapsed = std::chrono::duration<double>(now - runStart).count();
             const double eta = elapsed / std::max(1, done - firstIteration) * (o.iterations - done);
             progress << "train: it " << done << "/" << o.iterations << "  stage " << stage << "  loss " << std::fixed
-                     << std::setprecision(4) << row.total << " (view " << row.view << ", envmap " << row.envmap
-                     << ", adv " << row.adversarial << ")  " << std::setprecision(2) << row.itPerSecond << " it/s  ETA "
+                     << std::setprecision(4) << row.total << " (view " << row.view << ", envmap " << row.envmap;
+            if (direct) progress << ", voxel " << row.voxel << ", depth " << row.depth;
+            else progress << ", adv " << row.adversarial;
+            progress << ")  " << std::setprecision(2) << row.itPerSecond << " it/s (data " << row.secondsData
+                     << " s, forward " << row.secondsForward << " s, backward " << row.secondsBackward << " s)  ETA "
                      << formatDuration(eta);
             if (validateNow) progress << "  val PSNR " << row.valPsnr << " dB, angular " << row.valAngular << " deg";
             progress << std::defaultfloat << std::endl;
@@ -320,11 +464,16 @@ void train(const TrainOptions& o, std::ostream& progress) {
             windowStart = std::chrono::steady_clock::now();
             writeLog(o, s.log);  // every progress line, so a resumed run keeps whole curves
         }
-        if (done % o.checkpointEvery == 0 || done == o.iterations) {
+        if (done % o.checkpointEvery == 0 || done == o.iterations || done == sittingEnd) {
             s.iteration = done;
             saveCheckpoint(o, s);
             s.iteration = it;
         }
+    }
+    if (sittingEnd < o.iterations) {
+        progress << "train: stopped at iteration " << sittingEnd << " of " << o.iterations << " (--stop-after); "
+                 << "the same command resumes from " << checkpointPath(o) << "\n";
+        return;
     }
     s.iteration = o.iterations;
     saveModel(s.net, o.out);

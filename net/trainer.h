@@ -1,14 +1,25 @@
-// `lighthouse train`: the paper's staged schedule, scaled to our budget (SPEC.md step 8).
-//   stage 1 (first 25% of iterations): the MPI network alone, on the held-out view;
-//   stage 2 (to 90%): the envmap loss added, training the completion networks and,
-//            through the non-gradient-stopped blend, the MPI network;
-//   stage 3 (last 10%): the PatchGAN adversarial loss added (weight 0.1).
+// `lighthouse train`. Two kinds of supervision:
+//   direct (the default): every loss from the first iteration, for every network at once:
+//     the held-out view (image loss), the MPI's depth against the reference depth map, the
+//     cubes against the example's oracle volume (voxel loss on alpha and premultiplied
+//     radiance), and the rendered envmap against the HDR ground truth (image loss on clamped
+//     sRGB plus the log-radiance L1). The synthetic scenes' exact depth and oracle make this
+//     converge in CPU-hours; an example without depth.exr or oracle.vdb skips that term.
+//   paper: the paper's staged schedule without 3D ground truth:
+//     stage 1 (first 25% of iterations): the MPI network alone, on the held-out view;
+//     stage 2 (to 90%): the envmap losses added (and a small sparsity prior on the cubes);
+//     stage 3 (last 10%): the PatchGAN adversarial loss added (weight 0.1).
 // Image losses: the paper's VGG-19 perceptual loss with --vgg FILE, else the substitute of
-// losses.h. Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1; non-finite
-// gradients zeroed; gradients clipped to a global norm of 5.
+// losses.h. Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1;
+// non-finite gradients zeroed; gradients clipped to a global norm of 5. Each iteration draws
+// its example and augmentation (net/augment.h) from (seed, iteration) alone, so a resumed
+// run repeats exactly what an uninterrupted one would have done.
 #pragma once
 
+#include "net/config.h"
+
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 namespace lh::net {
@@ -16,8 +27,14 @@ namespace lh::net {
 struct TrainOptions {
     std::string data;          // training split (lighthouse synth --split train)
     std::string validation;    // held-out scenes; empty: the last 5% of `data`, not trained on
-    std::string config = "small";
-    std::string out = "model.pt";  // model; the checkpoint is OUT.checkpoint, the log OUT.csv/.png
+    std::string config = "standard";
+    std::string out = "model.pt";  // model; the log is OUT.csv/.png
+    std::string checkpoint;        // resumable state; empty: OUT.checkpoint
+    std::string init;              // model to fine-tune from (fresh optimiser) when no checkpoint exists
+    std::string supervision = "direct";  // "direct" or "paper" (see above)
+    bool augment = true;
+    int stopAfter = 0;             // end this sitting after this many iterations (checkpointed); 0: run to the end
+    std::optional<NetConfig> configOverride;  // sizes other than the named configurations (tests)
     int iterations = 12000;
     double learningRate = 3e-4;
     int validateEvery = 500;
@@ -32,6 +49,7 @@ struct TrainOptions {
                                // instead of the substitute
 
     void validate() const;     // throws InputError
+    std::string checkpointPath() const { return checkpoint.empty() ? out + ".checkpoint" : checkpoint; }
 };
 
 // Runs training, writing progress lines to `progress`.

@@ -1,5 +1,7 @@
 #include "net/unet3d.h"
 
+#include "net/fast_conv.h"
+
 namespace lh::net {
 
 namespace F = torch::nn::functional;
@@ -23,7 +25,9 @@ PreActConvImpl::PreActConvImpl(int in, int out, int stride) {
         "conv", torch::nn::Conv3d(torch::nn::Conv3dOptions(in, out, 3).stride(stride).padding(1)));
 }
 
-torch::Tensor PreActConvImpl::forward(const torch::Tensor& x) { return conv(torch::relu(norm(x))); }
+torch::Tensor PreActConvImpl::forward(const torch::Tensor& x) {
+    return fastConvolution(torch::relu(norm(x)), conv->weight, conv->bias, conv->options.stride()->at(0), 1);
+}
 
 ResidualPairImpl::ResidualPairImpl(int channels) {
     first = register_module("first", PreActConv(channels, channels, 1));
@@ -53,7 +57,7 @@ UNet3dImpl::UNet3dImpl(int inChannels, int outChannels, int w) {
 
 torch::Tensor UNet3dImpl::forward(const torch::Tensor& x) {
     std::vector<torch::Tensor> skips;
-    auto h = encRes[0](stem(x));
+    auto h = encRes[0](fastConvolution(x, stem->weight, stem->bias, 1, 1));
     for (int s = 0; s < 4; ++s) {
         skips.push_back(h);
         h = encRes[s + 1](down[s](h));

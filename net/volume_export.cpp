@@ -2,11 +2,12 @@
 
 #include "net/mpi_resample.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lh::net {
 
-LightingVolume cubesToVolume(const std::vector<torch::Tensor>& cubes, const VolumeLayout& layout) {
+LightingVolume cubesToVolume(const std::vector<torch::Tensor>& cubes, const VolumeLayout& layout, float minAlpha) {
     LightingVolume volume = LightingVolume::fromLayout(layout);
     for (int k = 0; k < layout.levels; ++k) {
         const auto cube = cubes[size_t(k)].detach().to(torch::kCPU, torch::kFloat32).squeeze(0).contiguous();
@@ -20,7 +21,7 @@ LightingVolume cubesToVolume(const std::vector<torch::Tensor>& cubes, const Volu
             for (int64_t y = 0; y < r; ++y)
                 for (int64_t x = 0; x < r; ++x) {
                     const float alpha = std::min(at(3, z, y, x), float(kMaxVoxelAlpha));
-                    if (!(alpha >= kMinStoredVoxelAlpha)) continue;
+                    if (!(alpha >= std::max(minAlpha, kMinStoredVoxelAlpha))) continue;
                     const openvdb::Coord ijk{int(x), int(y), int(z)};
                     density.setValue(ijk, float(-std::log1p(-double(alpha)) / voxel));
                     color.setValue(ijk, openvdb::Vec3s(at(0, z, y, x), at(1, z, y, x), at(2, z, y, x)));

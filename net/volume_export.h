@@ -14,7 +14,10 @@ namespace lh::net {
 constexpr float kMinStoredVoxelAlpha = 1e-4f;
 
 // cubes: per level (coarsest first) [1, 4, R, R, R] linear RGB + voxel alpha, indexed [z, y, x].
-LightingVolume cubesToVolume(const std::vector<torch::Tensor>& cubes, const VolumeLayout& layout);
+// Voxels with alpha below `minAlpha` are left empty (density 0, inactive): the volume's
+// sparsity, which empty-space skipping and storage depend on.
+LightingVolume cubesToVolume(const std::vector<torch::Tensor>& cubes, const VolumeLayout& layout,
+                             float minAlpha = kMinStoredVoxelAlpha);
 
 // mpi: [1, 4, D, H, W] linear RGB + alpha, planes far to near at `depths`.
 Mpi tensorToMpi(const torch::Tensor& mpi, const PinholeCamera& camera, const std::vector<double>& depths);

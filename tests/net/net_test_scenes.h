@@ -72,4 +72,18 @@ inline net::NetConfig tinyConfig() {
     return c;
 }
 
+// The `standard` configuration's design at unit-test sizes: a 2D MPI network, HDR colours,
+// completion networks at half the cube resolution (2 x 32^3 cubes, completed at 16^3).
+inline net::NetConfig tinyHdrConfig() {
+    net::NetConfig c = tinyConfig();
+    c.name = "tiny-hdr";
+    c.resolution = 32;
+    c.mpiNetwork = "2d";
+    c.mpiWidth = 4;
+    c.baseWidth = 4;
+    c.completionScale = 2;
+    c.hdr = true;
+    return c;
+}
+
 }  // namespace lh::test

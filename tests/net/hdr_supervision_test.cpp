@@ -1,0 +1,197 @@
+// The HDR design and direct supervision: the HDR activation, the new losses' known values,
+// the 2D MPI network's shapes, and short optimisations with known outcomes (an empty room's
+// interior becomes empty; a volume moves towards its oracle).
+#include "net/hdr.h"
+#include "net/lighthouse_net.h"
+#include "net/losses.h"
+#include "net/volume_render.h"
+#include "tests/net/net_test_scenes.h"
+#include "vdb/mpi.h"
+
+#include <gtest/gtest.h>
+
+namespace lh::net {
+namespace {
+
+using test::planeCamera;
+using test::renderPlane;
+using test::tinyHdrConfig;
+
+PairInputs tinyPair(const NetConfig& config, float brightness = 1.f) {
+    const PinholeCamera ref = planeCamera(64, 32), src = planeCamera(64, 32, Vec3d(0.2, 0.0, 0.0));
+    ImageRGB a = renderPlane(ref, 2.0), b = renderPlane(src, 2.0);
+    for (float& v : a.pixels) v = std::min(1.f, v * brightness);
+    for (float& v : b.pixels) v = std::min(1.f, v * brightness);
+    return makePairInputs(a, b, ref, src, 1.0, 4.0, config, torch::Device(torch::kCPU));
+}
+
+TEST(Hdr, ActivationExceedsOneAndStaysFinite) {
+    const auto x = torch::tensor({-1e6, -3.0, 0.0, 2.0, 5.0, 1e6, 1e30});
+    const auto y = hdrActivation(x);
+    EXPECT_TRUE(torch::isfinite(y).all().item<bool>());
+    EXPECT_GT(y.min().item<double>(), 0.0);
+    EXPECT_NEAR(y[3].item<double>(), std::exp(2.0), 1e-2);  // the soft clamp bends it by 0.1%
+    EXPECT_GT(y[4].item<double>(), 100.0);  // a lamp
+    EXPECT_NEAR(y[6].item<double>(), std::exp(kMaxLogRadiance), 1.0);
+}
+
+TEST(Hdr, SaturationWeightMarksOnlyClippedPixels) {
+    auto image = torch::zeros({1, 3, 1, 3});
+    image[0][0][0][0] = 0.5;   // mid grey: not clipped
+    image[0][1][0][1] = 0.95;  // half way into the ramp
+    image[0][2][0][2] = 1.0;   // clipped
+    const auto w = saturationWeight(image);
+    EXPECT_NEAR(w[0][0][0][0].item<double>(), 0.0, 1e-6);
+    EXPECT_NEAR(w[0][0][0][1].item<double>(), 0.5, 1e-5);
+    EXPECT_NEAR(w[0][0][0][2].item<double>(), 1.0, 1e-6);
+}
+
+TEST(Losses, HdrImageLossIsZeroOnIdenticalInputsAndSeesBrightness) {
+    const auto a = torch::full({1, 3, 4, 8}, 50.0);
+    EXPECT_EQ(hdrImageLoss(a, a).item<double>(), 0.0);
+    // A lamp of 50 predicted as 1: imageLoss (clamped) cannot see it, the HDR loss can.
+    const auto dim = torch::full_like(a, 1.0);
+    EXPECT_NEAR(imageLoss(dim, a).item<double>(), 0.0, 1e-6);
+    EXPECT_NEAR(hdrImageLoss(dim, a).item<double>(), std::log(51.0) - std::log(2.0), 1e-5);
+}
+
+TEST(Losses, VoxelLossIsMinimalOnIdenticalCubesAndKnownOtherwise) {
+    auto cube = torch::zeros({1, 4, 16, 16, 16});
+    cube.narrow(1, 3, 1).narrow(2, 0, 8).fill_(1.0);  // the far half is opaque
+    cube.narrow(1, 0, 3).fill_(2.0);
+    // Identical: only the cross-entropy of alpha clamped to [1e-4, 1 - 1e-4] is left, -ln(1 - 1e-4)
+    // for the empty and the opaque voxels alike.
+    EXPECT_NEAR(voxelLoss({cube}, {cube}).item<double>(), -std::log1p(-1e-4), 1e-6);
+    // Everything empty instead: on the opaque half (weight 10, against weight 1 for the empty
+    // half) alpha costs -ln(1e-4) and colour ln(1 + 2) - ln(1 + 0).
+    const auto empty = torch::zeros_like(cube);
+    const double expected = (10.0 * (-std::log(1e-4) + std::log(3.0)) + 1.0 * -std::log1p(-1e-4)) / (10.0 + 1.0);
+    EXPECT_NEAR(voxelLoss({empty}, {cube}).item<double>(), expected, 1e-4);
+}
+
+// An MPI whose only opaque plane is plane `index`.
+torch::Tensor singlePlaneMpi(int planes, int index) {
+    auto mpi = torch::zeros({1, 4, planes, 8, 8});
+    mpi.narrow(1, 3, 1).narrow(2, index, 1).fill_(1.0);
+    return mpi;
+}
+
+TEST(Losses, MpiDepthLossIsZeroAtTheTrueDepthAndGrowsAwayFromIt) {
+    const std::vector<double> depths = disparityLinearDepths(1.0, 4.0, 16);
+    const auto truth = torch::full({1, 1, 8, 8}, depths[5]);
+    EXPECT_NEAR(mpiDepthLoss(singlePlaneMpi(16, 5), depths, truth).item<double>(), 0.0, 1e-5);
+    const double near = mpiDepthLoss(singlePlaneMpi(16, 6), depths, truth).item<double>();
+    const double far = mpiDepthLoss(singlePlaneMpi(16, 12), depths, truth).item<double>();
+    EXPECT_NEAR(near, 1.0 / 15.0, 1e-4);  // one plane of 15 steps
+    EXPECT_NEAR(far, 7.0 / 15.0, 1e-4);
+    // A transparent MPI puts everything on the far plane.
+    EXPECT_NEAR(mpiExpectedDisparity(torch::zeros({1, 4, 16, 8, 8}), depths)[0][0][0][0].item<double>(), 0.25, 1e-6);
+}
+
+TEST(Losses, SparsityLossIsTheMeanAlpha) {
+    auto cube = torch::zeros({1, 4, 16, 16, 16});
+    cube.narrow(1, 3, 1).narrow(2, 0, 4).fill_(1.0);
+    EXPECT_NEAR(sparsityLoss({cube, torch::zeros_like(cube)}).item<double>(), 0.125, 1e-6);
+}
+
+TEST(HdrModel, TwoDimensionalMpiNetworkGivesEveryStageItsShape) {
+    torch::manual_seed(0);
+    const NetConfig config = tinyHdrConfig();
+    LighthouseNet net(config);
+    ASSERT_TRUE(net->mpiNet2d);
+    const PairInputs in = tinyPair(config, 4.f);  // mostly clipped
+    const PipelineOutput out = net->run(in);
+    EXPECT_EQ(out.mpi.sizes(), (std::vector<int64_t>{1, 4, 16, 16, 32}));
+    EXPECT_TRUE(torch::isfinite(out.mpi).all().item<bool>());
+    EXPECT_GE(out.mpi.min().item<double>(), 0.0);
+    ASSERT_EQ(out.cubes.size(), 2u);
+    for (const auto& c : out.cubes) {
+        EXPECT_EQ(c.sizes(), (std::vector<int64_t>{1, 4, 32, 32, 32}));
+        EXPECT_TRUE(torch::isfinite(c).all().item<bool>());
+        EXPECT_LE(c.narrow(1, 3, 1).max().item<double>(), 1.0);
+    }
+}
+
+constexpr int kSteps = 60;  // Adam steps of the short optimisations below
+
+// Cubes of an empty room seen from inside: every level opaque and emissive (radiance 2) in
+// its outer voxel shell where that shell is the room's wall (level 0 only), empty inside.
+std::vector<torch::Tensor> emptyRoomCubes(int levels, int r) {
+    std::vector<torch::Tensor> cubes;
+    for (int k = 0; k < levels; ++k) {
+        auto c = torch::zeros({1, 4, r, r, r});
+        if (k == 0) {
+            auto shell = torch::ones({1, 1, r, r, r});
+            shell.narrow(2, 2, r - 4).narrow(3, 2, r - 4).narrow(4, 2, r - 4).fill_(0.0);
+            c.narrow(1, 3, 1).copy_(shell);
+            c.narrow(1, 0, 3).copy_(shell.expand({1, 3, r, r, r}) * 2.0);
+        }
+        cubes.push_back(c);
+    }
+    return cubes;
+}
+
+double interiorAlpha(const torch::Tensor& cube) {
+    const int64_t r = cube.size(2);
+    return cube.narrow(1, 3, 1).narrow(2, 4, r - 8).narrow(3, 4, r - 8).narrow(4, 4, r - 8).mean().item<double>();
+}
+
+TEST(DirectSupervision, AnEmptyRoomPredictsEmptySpaceInsideAfterBriefTraining) {
+    torch::manual_seed(7);
+    const NetConfig config = tinyHdrConfig();
+    LighthouseNet net(config);
+    const PairInputs in = tinyPair(config);
+    const auto target = emptyRoomCubes(config.levels, config.resolution);
+    torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(1e-2));
+    double before = 0;
+    for (int step = 0; step < kSteps; ++step) {
+        const PipelineOutput out = net->run(in);
+        if (step == 0) before = interiorAlpha(out.cubes[1]) + interiorAlpha(out.cubes[0]);
+        auto loss = voxelLoss(out.cubes, target);
+        optimizer.zero_grad();
+        loss.backward();
+        optimizer.step();
+    }
+    torch::NoGradGuard noGrad;
+    const PipelineOutput out = net->run(in);
+    for (const auto& c : out.cubes) EXPECT_LT(interiorAlpha(c), 0.05);
+    EXPECT_LT(interiorAlpha(out.cubes[0]) + interiorAlpha(out.cubes[1]), 0.2 * before);
+    // And the walls it has learnt light the room: an envmap from the middle is bright (about
+    // the walls' radiance 2, well above what a sigmoid could give).
+    const auto env = renderEnvmapTorch(out.cubes, in.layout, Vec3d(0.0, 0.0, 0.5), 16, 8, 32);
+    EXPECT_GT(env.mean().item<double>(), 1.2);
+}
+
+TEST(DirectSupervision, DrivesTheVolumeTowardsItsOracle) {
+    torch::manual_seed(8);
+    const NetConfig config = tinyHdrConfig();
+    LighthouseNet net(config);
+    const PairInputs in = tinyPair(config);
+    // An oracle with a bright block (radiance 6) in the middle of each level.
+    std::vector<torch::Tensor> oracle;
+    for (int k = 0; k < config.levels; ++k) {
+        auto c = torch::zeros({1, 4, 32, 32, 32});
+        c.narrow(2, 12, 8).narrow(3, 12, 8).narrow(4, 12, 8).fill_(6.0);
+        c.narrow(1, 3, 1).narrow(2, 12, 8).narrow(3, 12, 8).narrow(4, 12, 8).fill_(1.0);
+        oracle.push_back(c);
+    }
+    torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(1e-2));
+    double first = 0, last = 0;
+    for (int step = 0; step < kSteps; ++step) {
+        auto loss = voxelLoss(net->run(in).cubes, oracle);
+        (step == 0 ? first : last) = loss.item<double>();
+        optimizer.zero_grad();
+        loss.backward();
+        optimizer.step();
+    }
+    EXPECT_LT(last, 0.4 * first) << "first " << first << " last " << last;
+    torch::NoGradGuard noGrad;
+    const auto cube = net->run(in).cubes[0];
+    // The block's centre is opaque and brighter than 1; the corners are empty.
+    EXPECT_GT(cube[0][3][16][16][16].item<double>(), 0.5);
+    EXPECT_GT(cube[0][0][16][16][16].item<double>(), 1.5);
+    EXPECT_LT(cube[0][3][2][2][2].item<double>(), 0.2);
+}
+
+}  // namespace
+}  // namespace lh::net

@@ -1,0 +1,172 @@
+// `lighthouse train` on a tiny synthetic data set with oracles: a run interrupted and resumed
+// ends with the weights of an uninterrupted run, direct supervision uses the oracle and the
+// depth map, and the paper's mode trains without either.
+#include "core/errors.h"
+#include "net/lighthouse_net.h"
+#include "net/trainer.h"
+#include "synth/dataset.h"
+#include "tests/net/net_test_scenes.h"
+
+#include "tests/support/temp_path.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace lh::net {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TrainerTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dataDir() = test::uniqueTempPath("lighthouse_trainer_test_data");
+        synth::SynthOptions o;
+        o.count = 3;
+        o.out = dataDir();
+        o.width = 64;
+        o.height = 48;
+        o.envWidth = 16;
+        o.envHeight = 8;
+        o.envmapsPerExample = 1;
+        o.supersample = 1;
+        o.hdriDir = LIGHTHOUSE_HDRI_DIR;
+        o.bake.texelSize = 0.4;
+        o.bake.maxTexels = 2000;
+        o.bake.gatherRays = 16;
+        o.bake.lightSamples = 4;
+        o.bake.bounces = 1;
+        o.oracleLevels = test::tinyHdrConfig().levels;
+        o.oracleResolution = test::tinyHdrConfig().resolution;
+        synth::writeDataset(o);
+    }
+    static void TearDownTestSuite() { fs::remove_all(dataDir()); }
+    static std::string& dataDir() {
+        static std::string path;
+        return path;
+    }
+
+    TrainOptions options(const std::string& name) const {
+        TrainOptions o;
+        o.data = dataDir();
+        o.configOverride = test::tinyHdrConfig();
+        o.out = test::uniqueTempPath(name + ".pt");
+        o.iterations = 4;
+        o.checkpointEvery = 100;
+        o.validateEvery = 100;
+        o.validationScenes = 1;
+        o.logEvery = 1;
+        o.threads = 1;
+        o.seed = 3;
+        return o;
+    }
+    static void removeOutputs(const TrainOptions& o) {
+        for (const std::string suffix : {"", ".csv", ".png", ".checkpoint"}) fs::remove(o.out + suffix);
+    }
+    static std::string readText(const std::string& path) {
+        std::ifstream in(path);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+};
+
+TEST_F(TrainerTest, ExamplesCarryTheirOracle) {
+    EXPECT_TRUE(fs::is_regular_file(fs::path(dataDir()) / "000000" / "oracle.vdb"));
+    EXPECT_TRUE(fs::is_regular_file(fs::path(dataDir()) / "000000" / "depth.exr"));
+}
+
+TEST_F(TrainerTest, ResumingGivesTheWeightsOfAnUninterruptedRun) {
+    std::ostringstream log;
+    const TrainOptions whole = options("lighthouse_trainer_whole");
+    train(whole, log);
+    TrainOptions split = options("lighthouse_trainer_split");
+    split.stopAfter = 2;
+    train(split, log);
+    EXPECT_FALSE(fs::exists(split.out + ".csv") && readText(split.out + ".csv").find("\n4,") != std::string::npos);
+    ASSERT_TRUE(fs::is_regular_file(split.checkpointPath()));
+    split.stopAfter = 0;
+    train(split, log);  // resumes at 2
+    EXPECT_NE(log.str().find("resuming from"), std::string::npos);
+
+    LighthouseNet a = loadModel(whole.out, torch::Device(torch::kCPU));
+    LighthouseNet b = loadModel(split.out, torch::Device(torch::kCPU));
+    const auto pa = a->named_parameters(), pb = b->named_parameters();
+    ASSERT_EQ(pa.size(), pb.size());
+    double worst = 0;
+    for (const auto& p : pa) worst = std::max(worst, (p.value() - pb[p.key()]).abs().max().item<double>());
+    EXPECT_LT(worst, 1e-5) << "largest weight difference between the two runs";
+    // The trained weights moved away from a fresh network's (the comparison is not vacuous).
+    torch::manual_seed(3);
+    LighthouseNet fresh(test::tinyHdrConfig());
+    double moved = 0;
+    for (const auto& p : fresh->named_parameters())
+        moved = std::max(moved, (p.value() - pa[p.key()]).abs().max().item<double>());
+    EXPECT_GT(moved, 1e-4);
+    removeOutputs(whole);
+    removeOutputs(split);
+}
+
+TEST_F(TrainerTest, DirectSupervisionUsesTheOracleAndTheDepth) {
+    std::ostringstream log;
+    TrainOptions o = options("lighthouse_trainer_direct");
+    o.iterations = 2;
+    train(o, log);
+    const std::string csv = readText(o.out + ".csv");
+    ASSERT_NE(csv.find("loss_voxel"), std::string::npos);
+    // Row 1: loss_voxel and loss_depth (columns 12 and 13) are positive.
+    std::istringstream rows(csv);
+    std::string header, row;
+    std::getline(rows, header);
+    std::getline(rows, row);
+    std::vector<std::string> cells;
+    std::istringstream fields(row);
+    for (std::string f; std::getline(fields, f, ',');) cells.push_back(f);
+    ASSERT_GE(cells.size(), 13u);
+    EXPECT_GT(std::stod(cells[11]), 0.0) << row;
+    EXPECT_GT(std::stod(cells[12]), 0.0) << row;
+    removeOutputs(o);
+}
+
+TEST_F(TrainerTest, PaperModeTrainsWithoutThreeDimensionalGroundTruth) {
+    std::ostringstream log;
+    TrainOptions o = options("lighthouse_trainer_paper");
+    o.supervision = "paper";
+    o.iterations = 4;  // stage 1 at 0, stage 2 from 1, stage 3 from 3
+    o.configOverride->trainEnvWidth = 64;  // the PatchGAN discriminator needs at least 32 rows
+    o.configOverride->trainEnvHeight = 32;
+    train(o, log);
+    EXPECT_TRUE(fs::is_regular_file(o.out));
+    const std::string csv = readText(o.out + ".csv");
+    std::istringstream rows(csv);
+    std::string line;
+    std::getline(rows, line);
+    int lines = 0;
+    while (std::getline(rows, line)) {
+        if (line.empty()) continue;  // writeTextFile ends files with a newline of its own
+        ++lines;
+        std::vector<std::string> cells;
+        std::istringstream fields(line);
+        for (std::string f; std::getline(fields, f, ',');) cells.push_back(f);
+        ASSERT_GE(cells.size(), 13u) << "line " << lines << ": '" << line << "'";
+        EXPECT_EQ(std::stod(cells[11]), 0.0) << "no voxel loss without 3D ground truth: " << line;
+        EXPECT_EQ(std::stod(cells[12]), 0.0) << "no depth loss without 3D ground truth: " << line;
+        EXPECT_TRUE(std::isfinite(std::stod(cells[2]))) << line;
+    }
+    EXPECT_EQ(lines, 4);
+    EXPECT_NE(csv.find("\n4,3,"), std::string::npos) << "the last iteration is in stage 3 (adversarial)";
+    removeOutputs(o);
+}
+
+TEST_F(TrainerTest, UnknownSupervisionIsAClearError) {
+    TrainOptions o = options("lighthouse_trainer_bad");
+    o.supervision = "oracle";
+    std::ostringstream log;
+    EXPECT_THROW(train(o, log), InputError);
+}
+
+}  // namespace
+}  // namespace lh::net
