@@ -28,6 +28,7 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--stop-after", o->stopAfter,
                     "End this sitting after N iterations, checkpointed; the same command resumes (0: run to the end)")
         ->capture_default_str();
+    cmd->add_flag("!--float-model", o->halfModel, "Write OUT in float32 (default: half precision, half the size)");
     cmd->add_flag("!--no-augment", o->augment, "No exposure, white-balance and noise augmentation");
     cmd->add_option("--iterations", o->iterations, "Training iterations (batch 1)")->capture_default_str();
     cmd->add_option("--lr", o->learningRate, "Adam learning rate (divided by 10 for the last 20%)")

@@ -160,11 +160,24 @@ PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const Pinhol
     return in;
 }
 
-void saveModel(LighthouseNet& net, const std::string& path) {
+void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision) {
     torch::serialize::OutputArchive archive;
     archive.write("lighthouse_config", c10::IValue(net->config.toJson()));
     archive.write("lighthouse_model_version", c10::IValue(int64_t(2)));
-    net->save(archive);
+    archive.write("lighthouse_half_precision", c10::IValue(halfPrecision));
+    if (halfPrecision) {
+        // A copy in half precision: the caller's network (still training, perhaps) keeps float32.
+        LighthouseNet copy(net->config);
+        torch::NoGradGuard noGrad;
+        const auto from = net->named_parameters();
+        for (auto& p : copy->named_parameters()) p.value().copy_(from[p.key()]);
+        const auto fromBuffers = net->named_buffers();
+        for (auto& b : copy->named_buffers()) b.value().copy_(fromBuffers[b.key()]);
+        copy->to(torch::kCPU, torch::kHalf);
+        copy->save(archive);
+    } else {
+        net->save(archive);
+    }
     const std::string temporary = path + ".partial";
     archive.save_to(temporary);
     std::filesystem::rename(temporary, path);
@@ -183,12 +196,16 @@ LighthouseNet loadModel(const std::string& path, const torch::Device& device) {
         throw FileError("'" + path + "' is not a readable model file: " + std::string(e.what_without_backtrace()));
     }
     LighthouseNet net(NetConfig::fromJson(configValue.toStringRef(), path));
+    c10::IValue halfValue;
+    // Parameters are read into tensors of the file's type, then computed in float.
+    if (archive.try_read("lighthouse_half_precision", halfValue) && halfValue.isBool() && halfValue.toBool())
+        net->to(torch::kCPU, torch::kHalf);
     try {
         net->load(archive);
     } catch (const c10::Error& e) {
         throw FileError("'" + path + "' does not match its configuration: " + std::string(e.what_without_backtrace()));
     }
-    net->to(device);
+    net->to(device, torch::kFloat32);  // half-precision files are computed in float
     net->eval();
     return net;
 }

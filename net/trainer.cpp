@@ -102,7 +102,7 @@ void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
     const std::string temporary = checkpointPath(o) + ".partial";
     archive.save_to(temporary);
     fs::rename(temporary, checkpointPath(o));
-    saveModel(s.net, o.out);
+    saveModel(s.net, o.out, o.halfModel);
 }
 
 bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
@@ -476,7 +476,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
         return;
     }
     s.iteration = o.iterations;
-    saveModel(s.net, o.out);
+    saveModel(s.net, o.out, o.halfModel);
     writeLog(o, s.log);
     progress << "train: wrote " << o.out << " (log " << o.out << ".csv, curves " << o.out << ".png)\n";
 }

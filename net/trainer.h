@@ -33,6 +33,7 @@ struct TrainOptions {
     std::string init;              // model to fine-tune from (fresh optimiser) when no checkpoint exists
     std::string supervision = "direct";  // "direct" or "paper" (see above)
     bool augment = true;
+    bool halfModel = true;         // OUT in half precision (the checkpoint keeps float32)
     int stopAfter = 0;             // end this sitting after this many iterations (checkpointed); 0: run to the end
     std::optional<NetConfig> configOverride;  // sizes other than the named configurations (tests)
     int iterations = 12000;

@@ -135,6 +135,29 @@ TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
     std::filesystem::remove(path);
 }
 
+TEST(Model, HalfPrecisionModelIsHalfTheSizeAndGivesNearlyTheSameOutputs) {
+    torch::manual_seed(4);
+    LighthouseNet net(test::tinyHdrConfig());
+    net->eval();
+    const std::string full = test::uniqueTempPath("lighthouse_model_full.pt");
+    const std::string half = test::uniqueTempPath("lighthouse_model_half.pt");
+    saveModel(net, full);
+    saveModel(net, half, /*halfPrecision=*/true);
+    EXPECT_LT(std::filesystem::file_size(half), 0.6 * std::filesystem::file_size(full));
+    LighthouseNet loaded = loadModel(half, torch::Device(torch::kCPU));
+    for (const auto& p : loaded->parameters()) EXPECT_EQ(p.scalar_type(), torch::kFloat32);
+    const PairInputs in = tinyPair(net->config);
+    torch::NoGradGuard noGrad;
+    const PipelineOutput a = net->run(in), b = loaded->run(in);
+    EXPECT_LT((a.mpi - b.mpi).abs().max().item<double>(), 2e-2);
+    for (size_t k = 0; k < a.cubes.size(); ++k)
+        EXPECT_LT(((a.cubes[k] - b.cubes[k]).abs() / (a.cubes[k].abs() + 1e-2)).max().item<double>(), 5e-2);
+    // The network it was saved from still trains in float32.
+    for (const auto& p : net->parameters()) EXPECT_EQ(p.scalar_type(), torch::kFloat32);
+    std::filesystem::remove(full);
+    std::filesystem::remove(half);
+}
+
 TEST(Model, NotAModelFileIsAClearError) {
     const std::string path = test::uniqueTempPath("lighthouse_not_a_model.pt");
     { std::ofstream(path) << "hello"; }

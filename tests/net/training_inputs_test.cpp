@@ -1,0 +1,128 @@
+// What training feeds the networks, against known answers: augmentation of photos and HDR
+// targets, oracle volumes as dense cubes (at the oracle's resolution and pooled to half), and
+// the oneDNN convolutions against libtorch's own.
+#include "core/errors.h"
+#include "net/augment.h"
+#include "net/fast_conv.h"
+#include "net/oracle_targets.h"
+#include "render/image_io.h"
+#include "vdb/lighting_volume.h"
+#include "vdb/volume_io.h"
+
+#include "tests/support/temp_path.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace lh::net {
+namespace {
+
+TEST(Augment, PhotosClipAndQuantiseWhileTargetsScale) {
+    Augmentation a;
+    a.exposure = 2.0;
+    a.gain[0] = 1.0, a.gain[1] = 0.5, a.gain[2] = 1.0;
+    a.noiseSigma = 0.0;
+    ImageRGB photo(1, 1), target(1, 1);
+    photo.at(0, 0)[0] = 0.8f;   // x2 -> 1.6: clips at 1
+    photo.at(0, 0)[1] = 0.2f;   // x1 -> 0.2: kept, to 8 bits
+    photo.at(0, 0)[2] = 0.01f;  // x2 -> 0.02
+    target.pixels = {50.f, 50.f, 0.1f};
+    Random rng(1);
+    augmentPhoto(photo, a, rng);
+    augmentRadiance(target, a);
+    EXPECT_FLOAT_EQ(photo.at(0, 0)[0], 1.f);
+    const float code = std::round(srgbEncode(0.2f) * 255.f) / 255.f;  // an 8-bit value
+    EXPECT_FLOAT_EQ(photo.at(0, 0)[1], srgbDecode(code));
+    EXPECT_NEAR(photo.at(0, 0)[2], 0.02f, 0.002f);
+    EXPECT_FLOAT_EQ(target.at(0, 0)[0], 100.f);  // HDR targets are not clipped
+    EXPECT_FLOAT_EQ(target.at(0, 0)[1], 50.f);
+    EXPECT_FLOAT_EQ(target.at(0, 0)[2], 0.2f);
+}
+
+TEST(Augment, DrawsWithinItsRangesAndNoiseChangesPixels) {
+    Random rng(7);
+    for (int i = 0; i < 200; ++i) {
+        const Augmentation a = drawAugmentation(rng);
+        EXPECT_GE(a.exposure, std::exp(-0.6) - 1e-12);
+        EXPECT_LE(a.exposure, std::exp(0.6) + 1e-12);
+        for (double g : a.gain) EXPECT_TRUE(g >= std::exp(-0.12) - 1e-12 && g <= std::exp(0.12) + 1e-12);
+        EXPECT_TRUE(a.noiseSigma >= 0 && a.noiseSigma <= 2.5 / 255.0);
+    }
+    Augmentation noisy;
+    noisy.noiseSigma = 2.0 / 255.0;
+    ImageRGB flat(32, 32);
+    std::fill(flat.pixels.begin(), flat.pixels.end(), 0.2f);
+    Random r(3);
+    augmentPhoto(flat, noisy, r);
+    int changed = 0;
+    for (float v : flat.pixels) changed += std::abs(v - 0.2f) > 1e-3f;
+    EXPECT_GT(changed, int(flat.pixels.size()) / 4);
+}
+
+// A 2-level oracle of 32^3 with one opaque voxel of known colour on level 1.
+std::string writeOracle(const VolumeLayout& layout) {
+    LightingVolume v = LightingVolume::fromLayout(layout);
+    const WorldBox box = layout.box(1);
+    const double voxel = layout.voxelSize(1);
+    const Vec3d centre = box.min + Vec3d(4.5, 6.5, 8.5) * voxel;  // voxel (x 4, y 6, z 8)
+    v.fillLevel(1, [&](const Vec3d& p) -> MediumSample {
+        if ((p - centre).length() > 0.1 * voxel) return {};
+        return {float(2.0 / voxel), openvdb::Vec3s(3.f, 1.f, 0.5f)};  // optical depth 2
+    });
+    const std::string path = test::uniqueTempPath("lighthouse_oracle_targets.vdb");
+    saveVolume(path, v);
+    return path;
+}
+
+TEST(OracleTargets, VoxelsBecomeAlphaAndColourAtTheirIndex) {
+    const VolumeLayout layout{8.0, 2, 32};
+    const std::string path = writeOracle(layout);
+    const auto cubes = loadOracleCubes(path, layout, torch::Device(torch::kCPU));
+    ASSERT_EQ(cubes.size(), 2u);
+    EXPECT_EQ(cubes[1].sizes(), (std::vector<int64_t>{1, 4, 32, 32, 32}));
+    EXPECT_NEAR(cubes[1][0][3][8][6][4].item<double>(), 1.0 - std::exp(-2.0), 1e-5);  // [c, z, y, x]
+    EXPECT_NEAR(cubes[1][0][0][8][6][4].item<double>(), 3.0, 1e-5);
+    EXPECT_NEAR(cubes[1][0][2][8][6][4].item<double>(), 0.5, 1e-5);
+    EXPECT_NEAR(cubes[1].narrow(1, 3, 1).sum().item<double>(), 1.0 - std::exp(-2.0), 1e-5);
+    EXPECT_EQ(cubes[0].abs().sum().item<double>(), 0.0);
+
+    // At half the resolution a 2^3 block averages: alpha / 8, the colour kept.
+    const auto half = loadOracleCubes(path, VolumeLayout{8.0, 2, 16}, torch::Device(torch::kCPU));
+    EXPECT_NEAR(half[1][0][3][4][3][2].item<double>(), (1.0 - std::exp(-2.0)) / 8.0, 1e-6);
+    EXPECT_NEAR(half[1][0][0][4][3][2].item<double>(), 3.0, 1e-4);
+    std::filesystem::remove(path);
+}
+
+TEST(OracleTargets, AnotherLayoutIsAClearError) {
+    const std::string path = writeOracle(VolumeLayout{8.0, 2, 32});
+    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{10.0, 2, 32}, torch::Device(torch::kCPU)), FileError);
+    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{8.0, 3, 32}, torch::Device(torch::kCPU)), FileError);
+    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{8.0, 2, 48}, torch::Device(torch::kCPU)), FileError);
+    std::filesystem::remove(path);
+}
+
+TEST(FastConvolution, AgreesWithLibtorchsConvolutionAndItsGradients) {
+    torch::manual_seed(0);
+    for (const bool threeD : {false, true}) {
+        const auto x = threeD ? torch::randn({1, 5, 8, 12, 10}) : torch::randn({1, 5, 12, 10});
+        const auto w = threeD ? torch::randn({7, 5, 3, 3, 3}) : torch::randn({7, 5, 3, 3});
+        const auto b = torch::randn({7});
+        for (const int64_t stride : {1, 2}) {
+            auto xa = x.clone().requires_grad_(true), wa = w.clone().requires_grad_(true);
+            auto xb = x.clone().requires_grad_(true), wb = w.clone().requires_grad_(true);
+            const auto fast = fastConvolution(xa, wa, b, stride, 1);
+            const auto reference = threeD ? torch::conv3d(xb, wb, b, stride, 1) : torch::conv2d(xb, wb, b, stride, 1);
+            ASSERT_EQ(fast.sizes(), reference.sizes());
+            EXPECT_LT((fast - reference).abs().max().item<double>(), 1e-4);
+            (fast * fast).sum().backward();
+            (reference * reference).sum().backward();
+            EXPECT_LT((xa.grad() - xb.grad()).abs().max().item<double>(), 1e-3);
+            EXPECT_LT((wa.grad() - wb.grad()).abs().max().item<double>(), 1e-2 * wb.grad().abs().max().item<double>());
+        }
+    }
+}
+
+}  // namespace
+}  // namespace lh::net
