@@ -17,13 +17,15 @@ void addEvalCommand(CLI::App& app, const int& threads) {
                     "without masks or scene.json (dev_cycles: masks from env_K_pos.exr and ref_depth.exr, "
                     "no oracle row)")
         ->required();
-    cmd->add_option("--model", o->model, "Model file (default: the bundled small model)");
+    cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
     cmd->add_option("-o,--output", o->out, "Output directory: table.md, metrics.csv, contact_sheet.png")
         ->capture_default_str();
     cmd->add_option("--max-scenes", o->maxScenes, "Evaluate only the first N scenes (0: all)")->capture_default_str();
     cmd->add_flag("!--no-oracle", o->oracle, "Skip the oracle ceiling (it re-bakes every scene's light)");
     cmd->add_option("--hdri-dir", o->hdriDir, "Panoramas of the scenes' windows (for the oracle)")
         ->capture_default_str();
+    cmd->add_option("--prune-alpha", o->pruneAlpha,
+                    "As predict's --prune-alpha (default: predict's default)");
     cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (untested here)")
         ->capture_default_str();
     cmd->callback([o, &threads] {

@@ -76,6 +76,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     po.model = o.model;
     po.device = o.device;
     po.threads = o.threads;
+    if (o.pruneAlpha >= 0) po.pruneAlpha = o.pruneAlpha;
     const Predictor predictor(po);
     const NetConfig& config = predictor.config();
     fs::create_directories(o.out);

@@ -31,6 +31,7 @@ struct EvalOptions {
     std::string hdriDir;     // panoramas for the oracle's windows
     std::string device = "cpu";
     int threads = 0;
+    float pruneAlpha = -1;   // predict's --prune-alpha; negative: its default
 };
 
 struct MethodScores {

@@ -95,15 +95,19 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& 
 }
 
 torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted, const std::vector<torch::Tensor>& target) {
-    constexpr double kAlphaFloor = 1e-4;
+    constexpr double kAlphaFloor = 1e-4, kCrossEntropyWeight = 0.1;
     auto total = torch::zeros({}, predicted.front().options());
     for (size_t k = 0; k < predicted.size(); ++k) {
         const auto pa = predicted[k].narrow(1, 3, 1), ta = target[k].narrow(1, 3, 1);
-        const auto weight = 1.0 + 9.0 * ta;
-        // Binary cross-entropy: its gradient through a saturated sigmoid does not vanish, so a
-        // surface voxel whose alpha was pushed towards 0 by the empty space around it recovers.
+        const auto weight = 1.0 + 2.0 * ta;
+        // L1 on alpha: its optimum where the room is uncertain (a wall that may be here or a
+        // few voxels on) is the median, empty or opaque, not the mean, which is fog that hides
+        // everything behind it. A tenth of the binary cross-entropy keeps a gradient through a
+        // saturated sigmoid, so a surface voxel pushed towards 0 by the empty space around it
+        // recovers.
         const auto pc = pa.clamp(kAlphaFloor, 1.0 - kAlphaFloor);
-        const auto alphaError = -(ta * torch::log(pc) + (1.0 - ta) * torch::log1p(-pc));
+        const auto crossEntropy = -(ta * torch::log(pc) + (1.0 - ta) * torch::log1p(-pc));
+        const auto alphaError = (pa - ta).abs() + kCrossEntropyWeight * crossEntropy;
         // Colour where the oracle has a surface, whatever the predicted alpha: a premultiplied
         // error would let a nearly transparent voxel chase the target with a huge colour.
         const auto radianceError = ta * (torch::log1p(predicted[k].narrow(1, 0, 3).clamp_min(0.0)) -

@@ -17,9 +17,11 @@ torch::Tensor imageLoss(const torch::Tensor& predictedLinear, const torch::Tenso
 torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
 
 // Direct supervision of the cubes by the oracle's (net/oracle_targets.h), both [1, 4, R, R, R]
-// per level (rgb, voxel alpha): per level the L1 of alpha plus the L1 of ln(1 + alpha rgb)
-// (premultiplied radiance), each voxel weighted by 1 + 9 alpha_oracle so that the thin
-// surfaces are not outvoted by the empty space around them; the mean over levels.
+// per level (rgb, voxel alpha): per level, for alpha, the L1 (whose optimum under uncertainty
+// is empty or opaque, not fog) plus a tenth of the binary cross-entropy (alpha clamped to
+// [1e-4, 1 - 1e-4]; it keeps a gradient through a saturated sigmoid), and for colour,
+// alpha_oracle times the L1 of ln(1 + rgb) (colour where the oracle has matter); each voxel
+// weighted by 1 + 2 alpha_oracle; the mean over levels.
 torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted, const std::vector<torch::Tensor>& target);
 
 // The MPI's depth against the reference view's true depth: the L1 of the composited
