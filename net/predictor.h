@@ -42,10 +42,10 @@ struct Prediction {
 constexpr float kDefaultPruneAlpha = 0.01f;
 
 struct PredictorOptions {
-    std::string model;        // empty: the bundled model (models/small.pt)
+    std::string model;        // empty: the bundled model (models/standard.pt)
     std::string device = "cpu";
     int threads = 0;          // 0: every core
-    // Timing only: random weights of this configuration ("small" or "paper") instead of a
+    // Timing only: random weights of this configuration ("standard", "small" or "paper") instead of a
     // model file, so both configurations can be timed without training the paper-sized one.
     std::string untrainedConfig;
     // Voxels of the completed volume whose opacity over one voxel is below this are left

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job on the embedded default input, the full pipeline:
 #  1. predict a lighting volume from the bundled stereo pair (data/demo_pair: a synthetic test
-#     scene the model never saw) with the bundled model (models/small.pt);
+#     scene the model never saw) with the bundled model (models/standard.pt);
 #  2. render envmaps from it at the two points where the pair's ground truth was taken, and
 #     score them (PSNR, RGB angular error) against that ground truth;
 #  3. insert three virtual objects into the reference photo, lit by the predicted volume at

@@ -8,7 +8,7 @@
 #   oracle     the true light of synthetic test example 000001 (`synth --split test --seed 0
 #              --count 2`, then `oracle`), 5 x 64^3, with ground-truth envmaps;
 #   example    the bundled procedural example room (`make-example`), 5 x 64^3;
-#   predicted  the bundled model's prediction for data/demo_pair (4 x 16^3 fog), with the pair's
+#   predicted  the bundled model's prediction for data/demo_pair (5 x 64^3), with the pair's
 #              ground-truth envmaps; skipped, with a note, in a build without lighthouse-net.
 # Per volume: `bench-envmap` (OUT/<volume>/speed/speed_error.{csv,md,svg}) and `bench-sparsity`
 # (OUT/<volume>/memory/memory_error.{csv,md,svg}, memory_breakdown.{csv,md}). Then

@@ -66,7 +66,7 @@ lighthouse_cli_error(eval_not_a_data_set
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS eval --data . -o eval_bad)
 
-if(EXISTS ${PROJECT_SOURCE_DIR}/models/small.pt)
+if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
   # The bundled model, depth range from cameras.json and estimated from the pair.
   lighthouse_cli_ok(predict_bundled_model
     FILES pred_ok.vdb
@@ -76,7 +76,7 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/small.pt)
     FILES pred_est.vdb
     ARGS predict ${LH_PAIR_ARGS} --cameras ${CMAKE_CURRENT_BINARY_DIR}/pair_no_range.json -o pred_est.vdb)
   lighthouse_cli_ok(predict_output_is_a_volume
-    STDOUT "4 level[(]s[)]" "density_L3, color_L3, finest yes"
+    STDOUT "5 level[(]s[)]" "density_L4, color_L4, finest yes"
     ARGS info pred_ok.vdb)
   set_tests_properties(cli.ok.predict_bundled_model PROPERTIES FIXTURES_SETUP lighthouse_predicted)
   set_tests_properties(cli.ok.predict_output_is_a_volume PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_predicted")
