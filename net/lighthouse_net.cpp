@@ -160,6 +160,14 @@ PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const Pinhol
     return in;
 }
 
+void copyWeights(LighthouseNet& to, LighthouseNet& from) {
+    torch::NoGradGuard noGrad;
+    const auto parameters = from->named_parameters();
+    for (auto& p : to->named_parameters()) p.value().copy_(parameters[p.key()]);
+    const auto buffers = from->named_buffers();
+    for (auto& b : to->named_buffers()) b.value().copy_(buffers[b.key()]);
+}
+
 void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision) {
     torch::serialize::OutputArchive archive;
     archive.write("lighthouse_config", c10::IValue(net->config.toJson()));
@@ -168,11 +176,7 @@ void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision) 
     if (halfPrecision) {
         // A copy in half precision: the caller's network (still training, perhaps) keeps float32.
         LighthouseNet copy(net->config);
-        torch::NoGradGuard noGrad;
-        const auto from = net->named_parameters();
-        for (auto& p : copy->named_parameters()) p.value().copy_(from[p.key()]);
-        const auto fromBuffers = net->named_buffers();
-        for (auto& b : copy->named_buffers()) b.value().copy_(fromBuffers[b.key()]);
+        copyWeights(copy, net);
         copy->to(torch::kCPU, torch::kHalf);
         copy->save(archive);
     } else {

@@ -61,6 +61,9 @@ PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const Pinhol
 // The part of completed level k-1 that level k covers, upsampled 2x (nearest): [1, C, R, R, R].
 torch::Tensor cropCoarserLevel(const torch::Tensor& coarser, int coarserLevel);
 
+// Copies every parameter and buffer of `from` into `to` (same configuration), without autograd.
+void copyWeights(LighthouseNet& to, LighthouseNet& from);
+
 // Model files: the configuration and every parameter, written atomically; in half precision
 // with `halfPrecision` (half the size; outputs within about 1e-3 relative), read back as float.
 void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision = false);

@@ -83,7 +83,6 @@ void setLearningRate(torch::optim::Adam& optimizer, double lr) {
     for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
 }
 
-std::string checkpointPath(const TrainOptions& o) { return o.checkpointPath(); }
 
 void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
     torch::serialize::OutputArchive archive, net, disc, opt, discOpt;
@@ -97,23 +96,23 @@ void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
     archive.write("discriminator_optimizer", discOpt);
     archive.write("iteration", c10::IValue(int64_t(s.iteration)));
     archive.write("config", c10::IValue(s.net->config.toJson()));
-    const fs::path target(checkpointPath(o));
+    const fs::path target(o.checkpointPath());
     if (!target.parent_path().empty()) fs::create_directories(target.parent_path());
-    const std::string temporary = checkpointPath(o) + ".partial";
+    const std::string temporary = o.checkpointPath() + ".partial";
     archive.save_to(temporary);
-    fs::rename(temporary, checkpointPath(o));
+    fs::rename(temporary, o.checkpointPath());
     saveModel(s.net, o.out, o.halfModel);
 }
 
 bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
-    if (!o.resume || !fs::is_regular_file(checkpointPath(o))) return false;
+    if (!o.resume || !fs::is_regular_file(o.checkpointPath())) return false;
     torch::serialize::InputArchive archive, net, disc, opt, discOpt;
     try {
-        archive.load_from(checkpointPath(o));
+        archive.load_from(o.checkpointPath());
         c10::IValue config, iteration;
         archive.read("config", config);
-        if (NetConfig::fromJson(config.toStringRef(), checkpointPath(o)).toJson() != s.net->config.toJson())
-            throw FileError("checkpoint '" + checkpointPath(o) + "' was trained with another configuration; delete it or pick another --out");
+        if (NetConfig::fromJson(config.toStringRef(), o.checkpointPath()).toJson() != s.net->config.toJson())
+            throw FileError("checkpoint '" + o.checkpointPath() + "' was trained with another configuration; delete it or pick another --out");
         archive.read("net", net);
         archive.read("discriminator", disc);
         archive.read("optimizer", opt);
@@ -125,7 +124,7 @@ bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
         s.discriminatorOptimizer->load(discOpt);
         s.iteration = int(iteration.toInt());
     } catch (const c10::Error& e) {
-        throw FileError("checkpoint '" + checkpointPath(o) + "' is unreadable (" +
+        throw FileError("checkpoint '" + o.checkpointPath() + "' is unreadable (" +
                         std::string(e.what_without_backtrace()).substr(0, 200) + "); delete it to start afresh");
     }
     return true;
@@ -325,17 +324,15 @@ void train(const TrainOptions& o, std::ostream& progress) {
     s.discriminatorOptimizer = std::make_unique<torch::optim::Adam>(
         s.discriminator->parameters(), torch::optim::AdamOptions(o.learningRate).betas({0.0, 0.9}));
     if (loadCheckpoint(o, s)) {
-        progress << "train: resuming from " << checkpointPath(o) << " at iteration " << s.iteration << "\n";
+        progress << "train: resuming from " << o.checkpointPath() << " at iteration " << s.iteration << "\n";
         s.log = readLog(o.out + ".csv", s.iteration);
     } else if (!o.init.empty()) {
         // Fine-tuning: the weights of a model of the same configuration, a fresh optimiser.
         LighthouseNet start = loadModel(o.init, device);
         if (start->config.toJson() != s.net->config.toJson())
             throw InputError("--init '" + o.init + "' is a '" + start->config.name + "' model with other sizes than --config " + o.config);
-        torch::NoGradGuard noGrad;
-        const auto from = start->named_parameters();
-        for (auto& p : s.net->named_parameters()) p.value().copy_(from[p.key()]);
-        progress << "train: no checkpoint at " << checkpointPath(o) << "; fine-tuning from " << o.init
+        copyWeights(s.net, start);
+        progress << "train: no checkpoint at " << o.checkpointPath() << "; fine-tuning from " << o.init
                  << " with a fresh optimiser\n";
     }
     const NetConfig& config = s.net->config;
@@ -472,7 +469,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
     }
     if (sittingEnd < o.iterations) {
         progress << "train: stopped at iteration " << sittingEnd << " of " << o.iterations << " (--stop-after); "
-                 << "the same command resumes from " << checkpointPath(o) << "\n";
+                 << "the same command resumes from " << o.checkpointPath() << "\n";
         return;
     }
     s.iteration = o.iterations;
