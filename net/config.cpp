@@ -42,6 +42,7 @@ NetConfig NetConfig::standard() {
     c.mpiWidth = 32;
     c.completionScale = 2;
     c.hdr = true;
+    c.colourAnchor = true;
     c.trainEnvWidth = 120;
     c.trainEnvHeight = 60;
     c.samplesPerLevel = 48;
@@ -88,6 +89,7 @@ void NetConfig::validate() const {
     if (samplesPerLevel < 4 || samplesPerLevel > 1024) throw InputError("samples per level must be in [4, 1024]");
     if (mpiNetwork != "2d" && mpiNetwork != "3d") throw InputError("MPI network must be '2d' or '3d', got '" + mpiNetwork + "'");
     if (mpiWidth < 4 || mpiWidth > 256) throw InputError("MPI network width must be in [4, 256]");
+    if (colourAnchor && !hdr) throw InputError("the colour anchor needs HDR colours");
     if (completionScale != 1 && completionScale != 2) throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
         throw InputError("the completion networks' resolution (cube resolution / completion scale) must be a multiple of 16");
@@ -107,8 +109,17 @@ std::string NetConfig::toJson() const {
                               {"mpi_network", mpiNetwork},
                               {"mpi_width", mpiWidth},
                               {"completion_scale", completionScale},
-                              {"hdr", hdr}};
+                              {"hdr", hdr},
+                              {"colour_anchor", colourAnchor}};
     return j.dump();
+}
+
+bool NetConfig::sameParameters(const NetConfig& other) const {
+    // Everything but the name and the colour anchor shapes the parameters.
+    NetConfig a = *this, b = other;
+    a.name = b.name;
+    a.colourAnchor = b.colourAnchor;
+    return a.toJson() == b.toJson();
 }
 
 NetConfig NetConfig::fromJson(const std::string& text, const std::string& sourceName) {
@@ -130,6 +141,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.mpiWidth = j.value("mpi_width", 32);
         c.completionScale = j.value("completion_scale", 1);
         c.hdr = j.value("hdr", false);
+        c.colourAnchor = j.value("colour_anchor", false);
     } catch (const nlohmann::json::exception& e) {
         throw FileError(sourceName + ": network configuration is not valid: " + e.what());
     }

@@ -34,6 +34,11 @@ struct NetConfig {
     // Colour activation: false: sigmoid, radiance in [0, 1]; true: HDR (net/hdr.h), unbounded
     // positive radiance, and the MPI may brighten the photo where it saturates.
     bool hdr = false;
+    // HDR only. Colours the networks invent (the MPI's background, the completed voxels) are
+    // relative to the photo's mean linear colour: exp(logit) times that mean, so that an
+    // untrained or uncertain network paints the room in the photo's own hue and exposure, and a
+    // brighter exposure of the same photo brightens the whole volume by the same factor.
+    bool colourAnchor = false;
 
     static NetConfig small();
     static NetConfig paper();
@@ -44,6 +49,9 @@ struct NetConfig {
     // Throws InputError naming the bad size.
     void validate() const;
     std::string toJson() const;
+    // Whether a model of `other` has the same parameters (names and shapes) as one of this
+    // configuration, so that `train --init` can fine-tune one into the other.
+    bool sameParameters(const NetConfig& other) const;
     static NetConfig fromJson(const std::string& text, const std::string& sourceName);
 };
 

@@ -40,7 +40,23 @@ LighthouseNetImpl::LighthouseNetImpl(const NetConfig& c) : config(c) {
                                              UNet3d((k == 0 ? 4 : 8) + positionChannels, 5, c.baseWidth)));
 }
 
-torch::Tensor LighthouseNetImpl::predictMpi(const torch::Tensor& psv, const torch::Tensor& refLinear) {
+torch::Tensor LighthouseNetImpl::logColourAnchor(const torch::Tensor& refLinear) const {
+    if (!config.colourAnchor) return {};
+    return torch::log(refLinear.mean({2, 3}).clamp_min(1e-3)).reshape({1, 3, 1, 1, 1});
+}
+
+namespace {
+
+// An invented colour from its logit: HDR (relative to the anchor when there is one) or sigmoid.
+torch::Tensor inventedColour(const torch::Tensor& logit, bool hdr, const torch::Tensor& logAnchor) {
+    if (!hdr) return torch::sigmoid(logit);
+    return hdrActivation(logAnchor.defined() ? logit + logAnchor : logit);
+}
+
+}  // namespace
+
+torch::Tensor LighthouseNetImpl::predictMpi(const torch::Tensor& psv, const torch::Tensor& refLinear,
+                                            const torch::Tensor& logAnchor) {
     const int64_t d = psv.size(2), h = psv.size(3), w = psv.size(4);
     torch::Tensor background, weight, alpha, boost;  // [1, 3|1, D|1, H, W]
     if (mpiNet2d) {
@@ -52,13 +68,13 @@ torch::Tensor LighthouseNetImpl::predictMpi(const torch::Tensor& psv, const torc
         alpha = torch::sigmoid(out.narrow(1, 0, d)).unsqueeze(1);
         weight = torch::sigmoid(out.narrow(1, d, d)).unsqueeze(1);
         const auto bgLogit = out.narrow(1, 2 * d, 3).unsqueeze(2);
-        background = config.hdr ? hdrActivation(bgLogit) : torch::sigmoid(bgLogit);
+        background = inventedColour(bgLogit, config.hdr, logAnchor);
         boost = out.narrow(1, 2 * d + 3, 1).unsqueeze(2);
     } else {
         const auto out = mpiNet(psv);  // [1, 5 or 6, D, H, W]
         // Background = mean over planes; blend weight picks reference or background per plane.
         const auto bgLogit = out.narrow(1, 0, 3);
-        background = (config.hdr ? hdrActivation(bgLogit) : torch::sigmoid(bgLogit)).mean(2, /*keepdim=*/true);
+        background = inventedColour(bgLogit, config.hdr, logAnchor).mean(2, /*keepdim=*/true);
         weight = torch::sigmoid(out.narrow(1, 3, 1));
         alpha = torch::sigmoid(out.narrow(1, 4, 1));
         if (config.hdr) boost = out.narrow(1, 5, 1).mean(2, /*keepdim=*/true);
@@ -103,7 +119,7 @@ torch::Tensor completionFeatures(const torch::Tensor& cube, bool hdr, bool halve
 }  // namespace
 
 std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::Tensor>& inputs,
-                                                       const VolumeLayout& layout) {
+                                                       const VolumeLayout& layout, const torch::Tensor& logAnchor) {
     std::vector<torch::Tensor> out;
     const bool halve = config.completionScale == 2;
     const VolumeLayout networkLayout{layout.s0, layout.levels, config.completionResolution()};
@@ -125,7 +141,7 @@ std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::
                                           .mode(torch::kTrilinear)
                                           .align_corners(false));
         const auto colourLogit = raw.narrow(1, 0, 3);
-        const auto colour = config.hdr ? hdrActivation(colourLogit) : torch::sigmoid(colourLogit);
+        const auto colour = inventedColour(colourLogit, config.hdr, logAnchor);
         const auto predicted = torch::cat({colour, torch::sigmoid(raw.narrow(1, 3, 1))}, 1);
         const auto weight = torch::sigmoid(raw.narrow(1, 4, 1));
         out.push_back(weight * predicted + (1.0 - weight) * inputs[k]);
@@ -136,11 +152,12 @@ std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::
 PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) {
     PipelineOutput result;
     const auto psv = planeSweepVolume(in.refEncoded, in.srcEncoded, in.ref, in.src, in.depths);
-    result.mpi = predictMpi(psv, in.refLinear);
+    const auto logAnchor = logColourAnchor(in.refLinear);
+    result.mpi = predictMpi(psv, in.refLinear, logAnchor);
     for (int k = 0; k < in.layout.levels; ++k)
         result.mpiCubes.push_back(
             resampleMpiToLevel(result.mpi, in.depths, in.ref, in.layout, k, config.hdr ? kMaxMpiRadiance : 1.0));
-    if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout);
+    if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout, logAnchor);
     return result;
 }
 

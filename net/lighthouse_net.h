@@ -39,14 +39,20 @@ struct LighthouseNetImpl : torch::nn::Module {
     // The MPI from the plane-sweep volume [1, 6, D, H, W] and the linear reference image:
     // per plane, alpha and a weight that blends the reference image (brightened where it
     // clipped, HDR configurations only) with a predicted background colour.
-    torch::Tensor predictMpi(const torch::Tensor& psv, const torch::Tensor& refLinear);
+    // `logAnchor` ([1, 3, 1, 1, 1] or undefined): see logColourAnchor.
+    torch::Tensor predictMpi(const torch::Tensor& psv, const torch::Tensor& refLinear,
+                             const torch::Tensor& logAnchor = {});
     // Completed levels, coarse to fine, each blended with its input cube by a predicted weight.
     // The networks run at config.completionResolution(); below the cube resolution their
     // outputs (colour, alpha, weight logits) are upsampled trilinearly before the blend.
     // Besides the cubes, every network sees where its voxels are: their centres in the
     // reference camera's frame in units of 4 m (so the floor below the camera, or the wall
     // behind it, is at the same value on every level), for the `standard` design.
-    std::vector<torch::Tensor> complete(const std::vector<torch::Tensor>& inputCubes, const VolumeLayout& layout);
+    std::vector<torch::Tensor> complete(const std::vector<torch::Tensor>& inputCubes, const VolumeLayout& layout,
+                                        const torch::Tensor& logAnchor = {});
+    // ln of the photo's mean linear colour per channel, [1, 3, 1, 1, 1] (floored at 1e-3), added
+    // to every invented colour's logit when config.colourAnchor; undefined otherwise.
+    torch::Tensor logColourAnchor(const torch::Tensor& refLinear) const;
     PipelineOutput run(const PairInputs& inputs, bool runCompletion = true);
 };
 TORCH_MODULE(LighthouseNet);

@@ -65,7 +65,7 @@ std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats,
         };
         torch::Tensor psv, mpi, loss;
         add(0, seconds([&] { psv = planeSweepVolume(in.refEncoded, in.srcEncoded, in.ref, in.src, in.depths); }), 0);
-        double f = seconds([&] { mpi = net->predictMpi(psv, in.refLinear); });
+        double f = seconds([&] { mpi = net->predictMpi(psv, in.refLinear, net->logColourAnchor(in.refLinear)); });
         add(1, f, seconds([&] { mpi.sum().backward(); }));
 
         const auto mpiLeaf = mpi.detach().requires_grad_(true);
@@ -86,7 +86,7 @@ std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats,
 
         std::vector<torch::Tensor> inputs, completed;
         for (const auto& c : cubes) inputs.push_back(c.detach());
-        f = seconds([&] { completed = net->complete(inputs, in.layout); });
+        f = seconds([&] { completed = net->complete(inputs, in.layout, net->logColourAnchor(in.refLinear)); });
         add(4, f, seconds([&] {
                 torch::Tensor total = torch::zeros({});
                 for (const auto& c : completed) total = total + c.sum();

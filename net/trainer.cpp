@@ -329,11 +329,14 @@ void train(const TrainOptions& o, std::ostream& progress) {
     } else if (!o.init.empty()) {
         // Fine-tuning: the weights of a model of the same configuration, a fresh optimiser.
         LighthouseNet start = loadModel(o.init, device);
-        if (start->config.toJson() != s.net->config.toJson())
+        if (!start->config.sameParameters(s.net->config))
             throw InputError("--init '" + o.init + "' is a '" + start->config.name + "' model with other sizes than --config " + o.config);
         copyWeights(s.net, start);
         progress << "train: no checkpoint at " << o.checkpointPath() << "; fine-tuning from " << o.init
                  << " with a fresh optimiser\n";
+        if (start->config.colourAnchor != s.net->config.colourAnchor)
+            progress << "train: --init has " << (start->config.colourAnchor ? "a" : "no")
+                     << " colour anchor; this run trains " << (s.net->config.colourAnchor ? "with" : "without") << " one\n";
     }
     const NetConfig& config = s.net->config;
     progress << "train: config " << config.name << " (" << config.width << "x" << config.height << " input, "
@@ -382,10 +385,17 @@ void train(const TrainOptions& o, std::ostream& progress) {
             loss = loss + depthLoss;
         }
         if (stage >= 2) {
+            // Every envmap of the example: the completion's forward and backward cost the same
+            // for one or all, and each one is a room seen from another point. The adversarial
+            // stage uses the one drawn for this iteration.
+            torch::Tensor env;
+            for (size_t k = 0; k < ex.envmaps.size(); ++k) {
+                const auto rendered = renderEnvmapTorch(out.cubes, ex.inputs.layout, ex.envmapPositions[k],
+                                                        config.trainEnvWidth, config.trainEnvHeight, config.samplesPerLevel);
+                envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) + hdrImageLoss(rendered, ex.envmaps[k]);
+                if (k == e) env = rendered;
+            }
             const auto& gt = ex.envmaps[e];
-            const auto env = renderEnvmapTorch(out.cubes, ex.inputs.layout, ex.envmapPositions[e], config.trainEnvWidth,
-                                               config.trainEnvHeight, config.samplesPerLevel);
-            envLoss = lossOf(env, gt) + hdrImageLoss(env, gt);
             loss = loss + envLoss;
             if (!ex.oracle.empty()) {
                 voxLoss = voxelLoss(out.cubes, ex.oracle);

@@ -119,6 +119,51 @@ TEST(Model, FewStepsOnATinySceneLowerTheLoss) {
     EXPECT_LT(last, 0.8 * first) << "first " << first << " last " << last;
 }
 
+// With the colour anchor, a completion network that outputs zeros (no knowledge) paints empty
+// space in the photo's mean colour, and an exposure change of the photo scales it alike.
+TEST(Model, ColourAnchorPaintsInventedColoursInThePhotosMeanColour) {
+    torch::manual_seed(0);
+    const NetConfig config = test::tinyHdrConfig();
+    ASSERT_TRUE(config.colourAnchor);
+    LighthouseNet net(config);
+    {
+        torch::NoGradGuard noGrad;
+        for (auto& completion : net->completion) {
+            completion->head->conv->weight.zero_();
+            completion->head->conv->bias.zero_();
+        }
+    }
+    for (const double exposure : {1.0, 3.0}) {
+        PairInputs in = tinyPair(config);
+        in.refLinear = in.refLinear * exposure;
+        const auto mean = in.refLinear.mean({2, 3}).reshape({3});  // the photo's mean linear colour
+        const PipelineOutput out = net->run(in);
+        for (size_t k = 0; k < out.cubes.size(); ++k) {
+            // Voxels the MPI left empty: the output is 0.5 x (anchor colour, alpha 0.5).
+            const auto empty = (out.mpiCubes[k].sum(1) == 0).squeeze(0);  // [R, R, R]
+            ASSERT_GT(empty.sum().item<int64_t>(), 100) << "level " << k;
+            for (int c = 0; c < 3; ++c) {
+                const auto invented = out.cubes[k][0][c].masked_select(empty) * 2.0;
+                EXPECT_NEAR(invented.mean().item<double>(), mean[c].item<double>(), 0.01 * mean[c].item<double>())
+                    << "level " << k << " channel " << c << " exposure " << exposure;
+                EXPECT_LT((invented.max() - invented.min()).item<double>(), 1e-4 * exposure);
+            }
+        }
+    }
+    NetConfig withoutAnchor = config;
+    withoutAnchor.colourAnchor = false;
+    EXPECT_TRUE(config.sameParameters(withoutAnchor));  // train --init fine-tunes one into the other
+    withoutAnchor.baseWidth = 8;
+    EXPECT_FALSE(config.sameParameters(withoutAnchor));
+    EXPECT_TRUE(NetConfig::fromJson(config.toJson(), "test").colourAnchor);
+    // Models written before the anchor existed have no key, and load without one.
+    std::string legacy = config.toJson();
+    const std::string key = "\"colour_anchor\":true,";
+    ASSERT_NE(legacy.find(key), std::string::npos) << legacy;
+    legacy.erase(legacy.find(key), key.size());
+    EXPECT_FALSE(NetConfig::fromJson(legacy, "test").colourAnchor);
+}
+
 TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
     torch::manual_seed(3);
     LighthouseNet net(tinyConfig());

@@ -73,7 +73,8 @@ inline net::NetConfig tinyConfig() {
 }
 
 // The `standard` configuration's design at unit-test sizes: a 2D MPI network, HDR colours,
-// completion networks at half the cube resolution (2 x 32^3 cubes, completed at 16^3).
+// completion networks at half the cube resolution (2 x 32^3 cubes, completed at 16^3), and
+// invented colours relative to the photo's mean colour.
 inline net::NetConfig tinyHdrConfig() {
     net::NetConfig c = tinyConfig();
     c.name = "tiny-hdr";
@@ -83,6 +84,7 @@ inline net::NetConfig tinyHdrConfig() {
     c.baseWidth = 4;
     c.completionScale = 2;
     c.hdr = true;
+    c.colourAnchor = true;
     return c;
 }
 
