@@ -1,6 +1,6 @@
 // `lighthouse compare PRED.exr GT.exr [--mask M.png]`
 // `lighthouse compare --batch PRED_DIR GT_DIR [--csv out.csv]`
-// The metrics of CONVENTIONS.md ("Metrics") and the two HDR ones of docs/metrics.md,
+// The metrics of docs/conventions.md#metrics and the two HDR ones of docs/metrics.md,
 // implemented in render/metrics.h.
 #include "cli/commands.h"
 #include "core/atomic_file.h"

@@ -44,7 +44,7 @@ void addRenderViewCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "render-view", "Render a perspective picture of a lighting volume from a camera");
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
-    cmd->add_option("--cameras", o->cameras, "cameras.json (CONVENTIONS.md format)")->required();
+    cmd->add_option("--cameras", o->cameras, "cameras.json (docs/conventions.md#cameras)")->required();
     cmd->add_option("--view", o->view, "Which camera: ref, src or tgt")->capture_default_str();
     cmd->add_option("--exposure", o->exposure, "PNG exposure multiplier")->capture_default_str();
     addQuadratureFlags(cmd, o->quadrature);

@@ -1,4 +1,4 @@
-// Pinhole cameras and the cameras.json file (CONVENTIONS.md: OpenCV axes, +x right, +y down,
+// Pinhole cameras and the cameras.json file (docs/conventions.md#cameras: OpenCV axes, +x right, +y down,
 // +z forward; pixel (u, v) has its centre at (u + 0.5, v + 0.5); pose = cam_to_world).
 #pragma once
 

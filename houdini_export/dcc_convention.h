@@ -35,7 +35,7 @@ struct DccConvention {
 
 // Grid names shared by both programs. `emission` = sigma * colour (premultiplied, per scene
 // unit) is what the DCC material renders: interpolating it, not `color`, keeps surfaces at
-// full brightness (CONVENTIONS.md, "Interpolation").
+// full brightness (docs/conventions.md#interpolation).
 inline const char* const kDccDensityGrid = "density";
 inline const char* const kDccEmissionGrid = "emission";
 inline const char* const kDccEmissionChannelGrids[3] = {"emission_r", "emission_g", "emission_b"};

@@ -1,7 +1,7 @@
 // `lighthouse eval`: the paper's Table 2 on our synthetic test split, or on any data set of
 // the same layout (dev_cycles: masks computed from env_K_pos.exr, no oracle without
 // scene.json). Per test envmap, four predictions are scored against the ground truth
-// (docs/metrics.md: CONVENTIONS.md's PSNR and RGB angle over all and observed content, and
+// (docs/metrics.md: the paper's PSNR and RGB angle over all and observed content, and
 // the log-luminance RMSE and diffuse-irradiance error that see HDR light), and reported as
 // mean +- std:
 //   ours            the completed lighting volume, rendered by the C++ ray marcher;

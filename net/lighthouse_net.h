@@ -1,5 +1,5 @@
 // The whole prediction model: the MPI network and one completion network per level, and the
-// differentiable pipeline that runs them (SPEC.md steps 2-6).
+// differentiable pipeline that runs them (docs/method.md).
 #pragma once
 
 #include "core/camera.h"
@@ -59,7 +59,7 @@ TORCH_MODULE(LighthouseNet);
 
 // Network inputs for a pair of linear images at any size: resized to the configuration's input
 // size (intrinsics scaled), planes linear in disparity between near and far, and the layout
-// of the volume (CONVENTIONS.md: s0 = 2 min(far, 20)).
+// of the volume (docs/conventions.md#nested-volume-layout: s0 = 2 min(far, 20)).
 PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const PinholeCamera& refCamera,
                           const PinholeCamera& srcCamera, double near, double far, const NetConfig& config,
                           const torch::Device& device);

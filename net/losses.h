@@ -1,4 +1,4 @@
-// Training losses (SPEC.md step 8).
+// Training losses (docs/method.md#losses).
 //  - imageLoss: L1 on sRGB-encoded clamp(linear, 0, 1) (the space the PSNR metric uses) plus
 //    L1 on image gradients at two scales. This is our documented substitute for the VGG-19
 //    perceptual loss, whose weights we cannot download here.

@@ -1,4 +1,4 @@
-// Differentiable rendering of an MPI into another view (SPEC.md step 4, training only): each
+// Differentiable rendering of an MPI into another view (docs/method.md, training only): each
 // plane is warped into the target camera by its homography and the planes are composited
 // back to front with premultiplied colour.
 #pragma once

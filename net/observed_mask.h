@@ -1,4 +1,4 @@
-// Observed-content masks (CONVENTIONS.md "Metrics") for data sets that ship none, computed
+// Observed-content masks (docs/conventions.md#metrics) for data sets that ship none, computed
 // from what they do ship: the first surface each envmap pixel sees (env_K_pos.exr) and the
 // reference view's z-depth (ref_depth.exr). Torch-free.
 //

@@ -1,4 +1,4 @@
-// The plane-sweep volume (SPEC.md step 2): the source image warped onto fronto-parallel planes
+// The plane-sweep volume (docs/method.md#plane-sweep-volume): the source image warped onto fronto-parallel planes
 // of the reference camera by the plane-induced homography, bilinear, zero outside the image.
 #pragma once
 

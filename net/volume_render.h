@@ -1,5 +1,5 @@
 // Differentiable envmap rendering for training, in the density/colour convention of
-// CONVENTIONS.md, so that it and the C++ ray marcher integrate the same medium.
+// docs/conventions.md#lighting-volume, so that it and the C++ ray marcher integrate the same medium.
 //
 // Like the paper, each level is sampled on `samplesPerLevel` concentric spheres around the
 // query point, evenly spaced out to the level's farthest corner. Unlike the paper, a sample
@@ -18,7 +18,7 @@
 
 namespace lh::net {
 
-// Unit directions of every envmap pixel (CONVENTIONS.md layout), [H, W, 3], float64.
+// Unit directions of every envmap pixel (docs/conventions.md#envmap-layout), [H, W, 3], float64.
 torch::Tensor envmapDirections(int width, int height);
 
 // cubes: per level (coarsest first) [1, 4, R, R, R] linear RGB + voxel alpha.

@@ -1,4 +1,4 @@
-// Rendering equirectangular environment maps (CONVENTIONS.md layout) from a lighting volume.
+// Rendering equirectangular environment maps (docs/conventions.md#envmap-layout) from a lighting volume.
 #pragma once
 
 #include "render/image.h"

@@ -1,4 +1,4 @@
-// Equirectangular envmap layout (CONVENTIONS.md). Pixel (row r, column c) of a W x H map,
+// Equirectangular envmap layout (docs/conventions.md#envmap-layout). Pixel (row r, column c) of a W x H map,
 // continuous centre (r + 0.5, c + 0.5):
 //   phi   = pi * (r + 0.5) / H            (polar angle from up, -y)
 //   theta = 2 pi (c + 0.5) / W - pi       (azimuth, 0 = forward +z)

@@ -1,4 +1,4 @@
-// Looking up an equirectangular envmap (CONVENTIONS.md layout) along a direction, bilinear,
+// Looking up an equirectangular envmap (docs/conventions.md#envmap-layout) along a direction, bilinear,
 // wrapping around in azimuth and clamping at the poles.
 #pragma once
 

@@ -21,7 +21,7 @@ namespace lh {
 
 class FirstMediumMap {
 public:
-    // Prepares the boxes' footprints on the width x height envmap (CONVENTIONS.md layout) at
+    // Prepares the boxes' footprints on the width x height envmap (docs/conventions.md#envmap-layout) at
     // `origin`. If the origin lies inside a box of occupied cells, or a level's axes are not
     // the world's, or a direction has a component of exactly 0, every start is 0 (no skipping).
     FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, int width, int height);

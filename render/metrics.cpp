@@ -13,7 +13,7 @@ namespace lh {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kMinNorm = 1e-6;  // CONVENTIONS.md: angular error skips darker pixels
+constexpr double kMinNorm = 1e-6;  // docs/conventions.md#metrics: angular error skips darker pixels
 
 std::string sizeText(const ImageRGB& image) {
     return std::to_string(image.width) + "x" + std::to_string(image.height);

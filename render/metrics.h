@@ -1,4 +1,4 @@
-// Envmap quality metrics, exactly as ../shared/CONVENTIONS.md ("Metrics") defines them:
+// Envmap quality metrics, exactly as docs/conventions.md#metrics defines them:
 // PSNR on sRGB-encoded clamped values and RGB angular error on linear values, over every
 // pixel ("all content") or over the pixels of a mask ("observed content"). Two HDR metrics
 // see what clamped PSNR cannot (lamps and windows far above 1): the relative error of the
@@ -36,7 +36,7 @@ double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
 enum class AxisNormal { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
 constexpr int kAxisNormals = 6;
 
-// Diffuse irradiance of an equirectangular envmap (CONVENTIONS.md layout) at normal n, per
+// Diffuse irradiance of an equirectangular envmap (docs/conventions.md#envmap-layout) at normal n, per
 // RGB channel: E(n) = sum over pixels of L(d) max(0, n.d) dOmega, with the pixel's solid
 // angle dOmega = (2 pi / W) (pi / H) sin phi. Units: radiance times steradians (a constant
 // L = 1 gives pi). Throws InputError for an empty or non-finite envmap.

@@ -2,7 +2,7 @@
 //
 // Each level becomes a sparse set of 8^3-voxel bricks in its own index space. A brick stores a
 // 9^3 lattice of (sigma, sigma*r, sigma*g, sigma*b) so that a trilinear lookup reads one
-// contiguous block: sigma and the premultiplied emission are interpolated (CONVENTIONS.md),
+// contiguous block: sigma and the premultiplied emission are interpolated (docs/conventions.md#interpolation),
 // colour = emission / sigma. Bricks whose lattice has no density are not stored; the marcher
 // skips them without sampling.
 //

@@ -34,7 +34,7 @@ struct SpeedErrorRow {
     std::string setting;   // e.g. "step 0.5, T<1e-4"
     double msPerEnvmap = 0;
     double relativeRmse = 0;  // RMSE of linear radiance / mean reference radiance
-    double psnr = 0;          // dB, CONVENTIONS.md, mean over points
+    double psnr = 0;          // dB, docs/conventions.md#metrics, mean over points
 };
 
 // Points uniformly inside level 1's box (level 0's for one-level volumes) where the medium is

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages Lighthouse-VDB builds and tests with (see
-# ../shared/BUILD_FACTS.md). Needs root, or sudo. Safe to run again.
+# Installs the Debian 12 packages Lighthouse-VDB builds and tests with (listed below).
+# Needs root, or sudo. Safe to run again.
 set -euo pipefail
 
 packages=(

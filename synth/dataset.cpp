@@ -150,7 +150,7 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             cameras.ref = rig.ref;
             cameras.src = rig.src;
             cameras.tgt = rig.tgt;
-            // Depth range seen by ref: 1st and 99th percentiles (CONVENTIONS.md).
+            // Depth range seen by ref: 1st and 99th percentiles (docs/conventions.md#cameras).
             cameras.near = double(depths[depths.size() / 100]);
             cameras.far = double(depths[depths.size() * 99 / 100]);
             for (std::size_t k = 0; k < points.size(); ++k) {

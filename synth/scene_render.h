@@ -1,5 +1,5 @@
 // Ground-truth pictures of a synthetic scene: perspective views, depth maps and envmaps
-// (CONVENTIONS.md layout) with the first-hit positions and the observed-content mask.
+// (docs/conventions.md#envmap-layout) with the first-hit positions and the observed-content mask.
 #pragma once
 
 #include "render/image.h"

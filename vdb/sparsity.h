@@ -1,11 +1,11 @@
 // Storing only what a scene needs (issue 7): error-bounded sparsity of a lighting volume.
 //
 // One bound, `tau`, decides every drop: the largest change of linear radiance (display white =
-// 1, the peak of CONVENTIONS.md's PSNR) that pruning may cause in any envmap pixel, i.e. along
+// 1, the peak of docs/conventions.md's PSNR) that pruning may cause in any envmap pixel, i.e. along
 // any ray. A per-voxel bound is not enough: a ray crosses hundreds of voxels, and in the dense
 // low-alpha fog the network predicts every one of them is "thin", so dropping each voxel below
 // tau lets the errors add up along the ray. The derivation (emission-absorption, premultiplied
-// trilinear sampling, CONVENTIONS.md):
+// trilinear sampling, docs/conventions.md#interpolation):
 //   L = integral T e dt, e = sigma * colour, T = exp(-integral sigma). Changing sigma by
 //   d_sigma(x) and emission by d_e(x) changes L by at most
 //       integral (|d_e| + C |d_sigma|) dt  <=  rayLength * max_x (|d_e| + C |d_sigma|),

@@ -1,4 +1,4 @@
-// The multiscale layout of a lighting volume (CONVENTIONS.md, "Multiscale layout"):
+// The multiscale layout of a lighting volume (docs/conventions.md#nested-volume-layout):
 // L nested cubes of R^3 voxels. Level 0 is a cube of side s0 centred on the reference camera;
 // level k >= 1 has side s0 / 2^k, spans x, y in [-s/2, s/2] and z in [0, s], so the camera sits
 // on the middle of its back face and every level lies on voxel boundaries of its parent.
@@ -26,7 +26,7 @@ struct VolumeLayout {
     int levels = 5;       // L, number of nested cubes
     int resolution = 64;  // R, voxels per side of every level
 
-    // Default s0 = 2 * min(far, 20) (CONVENTIONS.md).
+    // Default s0 = 2 * min(far, 20) (docs/conventions.md#nested-volume-layout).
     static VolumeLayout fromFarDepth(double far, int levels = 5, int resolution = 64);
 
     double side(int level) const;       // scene units

@@ -15,7 +15,7 @@ Volume object sharing one emission-absorption material:
                            from the float grids emission_r, emission_g, emission_b
 
 so Cycles integrates L = int T(t) sigma(t) colour(t) dt exactly as lighthouse does, with the
-premultiplied emission interpolated (CONVENTIONS.md). There is no scattering. Overlapping
+premultiplied emission interpolated (docs/conventions.md#interpolation). There is no scattering. Overlapping
 volume objects add up in Cycles, which is why the export holds shells, not nested levels.
 
 --at is a point in LIGHTHOUSE's world frame (the reference camera's OpenCV frame: x right,

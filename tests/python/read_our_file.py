@@ -5,7 +5,7 @@ usage: /usr/bin/python3 read_our_file.py /path/to/lighthouse
 
 Checks grid names, types, grid class, vector type, `level` and domain metadata, the file
 metadata (format version, layout, reference camera), each level's transform against the
-layout of CONVENTIONS.md (voxel (0,0,0) centred at box.min + voxel/2, voxel size s0/2^k/R),
+layout of docs/conventions.md#nested-volume-layout (voxel (0,0,0) centred at box.min + voxel/2, voxel size s0/2^k/R),
 the voxel values, and that OpenVDB's own `vdb_print` lists every grid (skipped if absent).
 """
 
@@ -25,7 +25,7 @@ LEVELS, RES, S0 = 3, 16, 14.0
 
 
 def box(level):
-    """World box of a level (CONVENTIONS.md, multiscale layout)."""
+    """World box of a level (docs/conventions.md#nested-volume-layout)."""
     s = S0 / 2 ** level
     if level == 0:
         return (-s / 2, -s / 2, -s / 2), (s / 2, s / 2, s / 2)

@@ -28,7 +28,7 @@ TEST(FirstMedium, ABlockIsMetWhereItsNearFaceIs) {
     // Block at +x, near face at x = 1.6. The field's support reaches one voxel further out than
     // the filled voxel centres (trilinear), so the start lies within a voxel and a half in front.
     const std::vector<float> starts = FirstMediumMap(blockAt(Vec3d(2, 0, 0)), Vec3d(0), W, H).all();
-    const float right = startAt(starts, H / 2, 3 * W / 4);  // +x (CONVENTIONS.md)
+    const float right = startAt(starts, H / 2, 3 * W / 4);  // +x (docs/conventions.md#envmap-layout)
     EXPECT_LE(right, 1.6f);
     EXPECT_GE(right, 1.6f - 0.15f);
     // Looking away (-x), up (-y) or forward (+z) the ray never meets the block.
