@@ -1,4 +1,4 @@
-// Microbenchmarks of the renderer's hot paths (issue 7): trilinear sampling, segment
+// Microbenchmarks of the renderer's hot paths: trilinear sampling, segment
 // integration along one ray, and level lookup (finest-wins partition of a ray). Stable case
 // names; run: build/bench/lighthouse_hotpath_bench [--benchmark_filter=Sample]
 // Single-threaded: each case times one call path, not the TBB envmap loop.

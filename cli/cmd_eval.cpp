@@ -26,7 +26,7 @@ void addEvalCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "As predict's --prune-alpha (default: predict's default)");
-    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (untested here)")
+    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();
     cmd->callback([o, &threads] {
         o->threads = threads;

@@ -87,7 +87,7 @@ void addPredictCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly all)")
         ->capture_default_str();
-    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (untested here)")
+    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();
     cmd->add_option("--envmap-at", o->envmapsAt, "Also render envmaps at these points X,Y,Z (next to the output)");
     cmd->add_option("--envmap-size", o->envmapSize, "Size of those envmaps, WxH")->capture_default_str();

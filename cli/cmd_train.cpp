@@ -39,7 +39,7 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--checkpoint-every", o->checkpointEvery, "Iterations between checkpoints")->capture_default_str();
     cmd->add_option("--log-every", o->logEvery, "Iterations between progress lines")->capture_default_str();
     cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
-    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (untested here)")
+    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();
     cmd->add_option("--vgg", o->vggWeights,
                     "VGG-19 weights for the paper's perceptual loss (TorchScript; see net/vgg_loss.h); default: L1 + gradients");

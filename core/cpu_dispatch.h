@@ -3,7 +3,7 @@
 // (GCC function multi-versioning, an ifunc). Answers of the versions differ only by rounding
 // (FMA). The marcher (LH_PER_CPU_FLATTENED) also has an x86-64-v4 version (AVX-512: 32
 // vector registers for the one large function it is): 1-4.5% less time in paired runs
-// (docs/performance.md, session 9). valgrind hides AVX-512, so callgrind counts the v3 one.
+// (docs/performance.md). valgrind hides AVX-512, so callgrind counts the v3 one.
 // Elsewhere (other compilers, other architectures) the macros are empty.
 #pragma once
 

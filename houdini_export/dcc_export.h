@@ -1,4 +1,4 @@
-// Exporting a lighting volume for Blender or Houdini (issue 5).
+// Exporting a lighting volume for Blender or Houdini.
 //
 // The export is a directory:
 //   level_<k>.vdb   one file per level k (0 = coarsest), each holding

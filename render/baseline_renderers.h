@@ -1,4 +1,4 @@
-// Two envmap renderers to measure ours against (issue 7), same layout and medium:
+// Two envmap renderers to measure ours against, same layout and medium:
 //   * the paper's: per level N concentric spheres around the query point (radii evenly spaced
 //     between the level's nearest and farthest points), one trilinear lookup per sphere and
 //     pixel, composited front to back; a level contributes only where no finer level exists;

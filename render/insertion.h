@@ -1,4 +1,4 @@
-// Inserting virtual objects into a photograph, lit by a lighting volume (issue 6).
+// Inserting virtual objects into a photograph, lit by a lighting volume.
 //
 // Every shading point is lit by rays traced from that point through the volume (emission-
 // absorption exactly as the envmap renderer), not by one envmap per object: mirror = one

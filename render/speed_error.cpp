@@ -134,7 +134,7 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
 
     // Round r renders every setting at every point once: a setting's time per point is the
     // fastest over the rounds, so each setting is sampled across the whole run and a drift of
-    // the machine's speed (this VM's changes by up to 2x within an hour) falls on all of them
+    // the machine's speed (a shared machine's changes by up to 2x within an hour) falls on all of them
     // alike. The errors come from the first round (renders are deterministic).
     std::vector<SpeedErrorRow> rows(trials.size());
     std::vector<std::vector<double>> fastest(trials.size(),
@@ -376,7 +376,7 @@ std::string memoryTargetMarkdown(const std::vector<MemoryErrorRow>& rows, double
     std::ostringstream md;
     char line[512];
     std::snprintf(line, sizeof line,
-                  "\n## Against the target (issue 7), at the default bound tau %g\n\n"
+                  "\n## Against the target, at the default bound tau %g\n\n"
                   "At most a tenth of the dense float storage (%.3g MB: sigma and RGB as floats at every voxel of "
                   "every level) with at most %.1f dB PSNR lost on envmaps:\n\n",
                   tau, denseBytes / 1e6, kMemoryTargetLossDb);

@@ -1,4 +1,4 @@
-// Speed against error of envmap renderers on one volume (issue 7): ours at several steps and
+// Speed against error of envmap renderers on one volume: ours at several steps and
 // termination thresholds, a fixed-step marcher over OpenVDB's samplers, and the paper's
 // concentric spheres, all measured against our reference mode on the same random points.
 #pragma once
@@ -21,7 +21,7 @@ struct SpeedErrorOptions {
     // is, per point, the fastest over the rounds, averaged over the points (the
     // reference-check row renders in the first round only). The minimum is what a method
     // costs (a busy machine only ever adds to it), and rounds spread every setting over the
-    // whole run, so a drift of the machine's speed (this VM's changes by up to 2x within an
+    // whole run, so a drift of the machine's speed (a shared machine's changes by up to 2x within an
     // hour) falls on all settings alike and ratios stay fair.
     int repeats = 3;
     // Methods to measure ("reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step",
@@ -56,7 +56,7 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(
 void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::string& directory, int width,
                            int height);
 
-// ---- Memory against error (issue 7, "storing only what the scene needs") ----
+// ---- Memory against error ("storing only what the scene needs") ----
 
 struct MemoryErrorOptions {
     std::vector<double> taus{1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1};  // vdb/sparsity.h bounds
@@ -94,7 +94,7 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(
     const LightingVolume& volume, const MemoryErrorOptions& options,
     const std::function<void(const std::string&)>& progress = {});
 
-// Issue 7's storage target: at most this fraction of the dense float storage, with at most
+// The storage target: at most this fraction of the dense float storage, with at most
 // this many dB of envmap PSNR lost against ground truth.
 constexpr double kMemoryTargetFraction = 0.1, kMemoryTargetLossDb = 0.1;
 

@@ -77,7 +77,7 @@ std::string speedSummaryMarkdown(const SpeedSummary& s) {
     }
     const SpeedTargets& t = s.targets;
     const char* verdict[2] = {"**not met**", "**met**"};
-    std::snprintf(line, sizeof line, "\nTargets (issue 7; %dx%d envmaps, 2 cores):\n\n", t.width, t.height);
+    std::snprintf(line, sizeof line, "\nTargets (%dx%d envmaps, 2 cores):\n\n", t.width, t.height);
     md << line;
     if (s.width != t.width || s.height != t.height) {
         std::snprintf(line, sizeof line, "* not judged: this run rendered %dx%d envmaps\n", s.width, s.height);

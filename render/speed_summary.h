@@ -1,8 +1,8 @@
-// What issue 7's speed targets ask of one speed-against-error run (render/speed_error.h): our
+// What the speed targets ask of one speed-against-error run (render/speed_error.h): our
 // fastest setting within an error bound, the default's standing, and, for every setting of the
 // paper's method, our fastest setting at equal or lower error and how many times faster it is.
 // Only rows of one run are compared: their times were taken on the same machine in the same
-// rounds, so their ratios hold even when this VM's absolute speed drifts.
+// rounds, so their ratios hold even when the machine's absolute speed drifts.
 #pragma once
 
 #include "render/speed_error.h"
@@ -19,7 +19,7 @@ struct SpeedComparison {
     double speedup = 0;                 // their ms / our ms; 0 without `ours`
 };
 
-// Issue 7's speed targets for 240x120 envmaps on this machine's 2 cores.
+// The speed targets for 240x120 envmaps on this machine's 2 cores.
 struct SpeedTargets {
     int width = 240, height = 120;                  // the envmap size they are set for
     double envmapsPerSecond = 100;                  // ... within the error bound

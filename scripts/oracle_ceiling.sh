@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The oracle ceiling: how well the lighting-volume layout itself can reproduce ground-truth
-# envmaps, for several level counts and resolutions (issue 3). Generates a synthetic test
+# envmaps, for several level counts and resolutions. Generates a synthetic test
 # split, voxelises every example's true scene (`lighthouse oracle`), renders the oracle's
 # envmaps at the ground-truth points and compares them (`lighthouse compare --batch`).
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 7's figures in one command: speed against error and memory against error on three
+# The performance study's figures in one command: speed against error and memory against error on three
 # volumes, and the targets read from those runs.
 #
 #   bash scripts/performance_study.sh [--quick] [--docs] [OUT]      (OUT default out/performance)
@@ -90,7 +90,7 @@ section() {  # the lines of file $1 from the heading that starts with $2 to the 
   sed -n "/^## $2/,\$p" "$1"
 }
 {
-  echo "# Issue 7: speed, error and memory (scripts/performance_study.sh)"
+  echo "# Speed, error and memory (scripts/performance_study.sh)"
   echo
   echo "* command: \`bash scripts/performance_study.sh$([ "$quick" = 1 ] && echo " --quick")\`"
   echo "* when: $(date -u '+%Y-%m-%d %H:%M UTC'); commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo ', with uncommitted changes')"

@@ -1,4 +1,4 @@
-// Synthetic data sets (issue 3): per example a stereo pair, a held-out view, ground-truth
+// Synthetic data sets: per example a stereo pair, a held-out view, ground-truth
 // envmaps at points where a user would insert an object, the reference depth map, an
 // observed-content mask per envmap, cameras.json and scene.json. Deterministic by seed.
 //

@@ -44,7 +44,7 @@ lighthouse_cli_ok(sparsity_make_fog
   ARGS edit example.vdb --add-box -100,-100,-100,100,100,100:0.4,0.3,0.2:0.05 -o fog.vdb)
 lighthouse_cli_ok(bench_sparsity_fog
   STDOUT "unpruned" "tau 0[.]1" "where the bytes in memory go" "brightest colour 0[.]4"
-         "Against the target [(]issue 7[)], at the default bound tau 0[.]0001" "no row at that bound"
+         "Against the target, at the default bound tau 0[.]0001" "no row at that bound"
   FILES bench_sparsity_fog/memory_error.csv bench_sparsity_fog/memory_error.svg
         bench_sparsity_fog/memory_breakdown.md
   ARGS bench-sparsity fog.vdb --points 1 --size 16x8 --taus 1e-3,0.1 --out bench_sparsity_fog)

@@ -1,5 +1,5 @@
 // Numerical stability on hard cases: every answer finite and within an error bound of the
-// analytic one (issue 7's hard-case suite, renderer part).
+// analytic one (the hard-case suite, renderer part).
 #include "render/envmap.h"
 
 #include "core/errors.h"

@@ -1,4 +1,4 @@
-// Object insertion with known answers (issue 6).
+// Object insertion with known answers.
 #include "render/insertion.h"
 
 #include "core/errors.h"
