@@ -1,4 +1,4 @@
-// `lighthouse eval --data DIR [--model M] [-o DIR]`: the paper's Table 2 on our test split, with
+// `lighthouse eval --data DIR [--model M] [-o DIR] [--shard K/N]`: the paper's Table 2 on our test split, with
 // the HDR metrics of docs/metrics.md beside it.
 #include "cli/commands.h"
 #include "cli/net_commands.h"
@@ -26,10 +26,15 @@ void addEvalCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "As predict's --prune-alpha (default: predict's default)");
+    auto shard = std::make_shared<std::string>();
+    cmd->add_option("--shard", *shard,
+                    "K/N: score only scenes i with i mod N = K (0-based) into shard files in --output; "
+                    "`lighthouse merge` writes table.md, metrics.csv and the contact sheet of all shards");
     cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();
-    cmd->callback([o, &threads] {
+    cmd->callback([o, shard, &threads] {
         o->threads = threads;
+        if (!shard->empty()) o->shard = parseShard(*shard);
         const net::EvalReport report = net::evaluate(*o, std::cerr);
         std::cout << report.markdown;
     });

@@ -1,16 +1,28 @@
 // `lighthouse predict --ref REF.png --src SRC.png --cameras cameras.json [--model M] -o scene.vdb`
+// `lighthouse predict --pairs LIST | --examples DIR -o OUT_DIR [--shard K/N]`: many pairs, one
+// model load; OUT_DIR/NAME.vdb each, and predictions.json (or a shard record, cli/shard_merge.h).
 #include "cli/cli_common.h"
+#include "cli/shard_merge.h"
 #include "cli/commands.h"
 #include "cli/net_commands.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/shard.h"
 #include "net/predictor.h"
+#include "net/training_data.h"
 #include "render/envmap.h"
 #include "render/image_io.h"
 #include "vdb/volume_io.h"
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <set>
+#include <sstream>
 
 namespace lh::cli {
 
@@ -21,9 +33,125 @@ struct PredictOptions {
     std::vector<std::string> envmapsAt;
     std::string envmapSize = "240x120";
     float pruneAlpha = net::kDefaultPruneAlpha;
+    std::string pairs, examples, shard;  // batch form
 };
 
+namespace fs = std::filesystem;
+
+// One pair of the batch form: its name (of the output, NAME.vdb) and files.
+struct BatchItem {
+    std::string name, ref, src, cameras;
+};
+
+// The list file: one pair a line, "REF SRC CAMERAS [NAME]", paths relative to the list's
+// folder; blank lines and lines starting with '#' are skipped. NAME defaults to the pair's
+// 0-based number, 000000, 000001, ...
+std::vector<BatchItem> readPairList(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw FileError("cannot read the list of pairs '" + path + "'");
+    const fs::path base = fs::path(path).parent_path();
+    const auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).string(); };
+    std::vector<BatchItem> items;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        std::istringstream fields(line);
+        std::vector<std::string> f;
+        for (std::string w; fields >> w;) f.push_back(w);
+        if (f.empty() || f[0][0] == '#') continue;
+        if (f.size() < 3 || f.size() > 4)
+            throw InputError("'" + path + "' line " + std::to_string(number) +
+                             ": expected REF SRC CAMERAS [NAME], got '" + line + "'");
+        char id[16];
+        std::snprintf(id, sizeof id, "%06zu", items.size());
+        items.push_back({f.size() == 4 ? f[3] : std::string(id), resolve(f[0]), resolve(f[1]), resolve(f[2])});
+    }
+    if (items.empty()) throw InputError("'" + path + "' lists no pairs (lines REF SRC CAMERAS [NAME])");
+    return items;
+}
+
+std::vector<BatchItem> batchItems(const PredictOptions& o) {
+    std::vector<BatchItem> items;
+    if (!o.pairs.empty()) {
+        items = readPairList(o.pairs);
+    } else {
+        for (const std::string& dir : net::listExamples(o.examples)) {
+            const fs::path d(dir);
+            items.push_back({d.filename().string(), (d / "ref.png").string(), (d / "src.png").string(),
+                             (d / "cameras.json").string()});
+        }
+    }
+    std::set<std::string> names;
+    for (const BatchItem& item : items) {
+        if (item.name.empty() || item.name.find('/') != std::string::npos || item.name[0] == '.')
+            throw InputError("pair name '" + item.name + "' is not a plain file name");
+        if (!names.insert(item.name).second) throw InputError("two pairs are named '" + item.name + "'");
+    }
+    return items;
+}
+
+void runPredictBatch(const PredictOptions& o, int threads) {
+    if (!o.pairs.empty() && !o.examples.empty()) throw InputError("give --pairs or --examples, not both");
+    if (!o.ref.empty() || !o.src.empty() || !o.cameras.empty())
+        throw InputError("--ref, --src and --cameras are for one pair; --pairs and --examples list many");
+    if (!o.envmapsAt.empty()) throw InputError("--envmap-at is for one pair, not with --pairs or --examples");
+    if (fileExtension(o.output) == ".vdb")
+        throw InputError("with --pairs or --examples, -o is a directory (NAME.vdb each), not '" + o.output + "'");
+    const Shard shard = o.shard.empty() ? Shard{} : parseShard(o.shard);
+    const std::vector<BatchItem> items = batchItems(o);
+    fs::create_directories(o.output);
+    net::PredictorOptions po;
+    po.model = o.model;
+    po.device = o.device;
+    po.threads = threads;
+    po.pruneAlpha = o.pruneAlpha;
+    const net::Predictor predictor(po);
+    std::size_t owned = 0, done = 0;
+    for (std::size_t i = 0; i < items.size(); ++i) owned += shard.owns(i) ? 1 : 0;
+    std::cerr << "predict: " << owned << " of " << items.size() << " pairs";
+    if (shard.active) std::cerr << " (shard " << shard.index << " of " << shard.count << ")";
+    std::cerr << " -> " << o.output << "/NAME.vdb\n";
+    const auto start = std::chrono::steady_clock::now();
+    nlohmann::json entries = nlohmann::json::array();
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        if (!shard.owns(i)) continue;
+        const BatchItem& item = items[i];
+        net::StereoPair pair{readImage(item.ref), readImage(item.src), loadCamerasFile(item.cameras)};
+        net::validateStereoPair(pair);
+        const net::Prediction p = predictor.predict(pair);
+        const std::string output = item.name + ".vdb";
+        saveVdb((fs::path(o.output) / output).string(), &p.volume, &p.mpi);
+        nlohmann::json entry = predictionEntry(item.name, item.ref, item.src, item.cameras, output);
+        entry["index"] = i;
+        entry["seconds"] = p.seconds;
+        entries.push_back(entry);
+        std::cerr << "predict: " << ++done << "/" << owned << " " << item.name << ": network " << p.seconds << " s, "
+                  << p.volume.activeVoxelCount() << " active voxels\n";
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string model = o.model.empty() ? net::defaultModelPath() : o.model;
+    if (shard.active) {
+        const nlohmann::json record = {{"kind", "predict"}, {"shard", shard.index}, {"shards", shard.count},
+                                       {"predict", {{"model", model}, {"pairs", items.size()}}},
+                                       {"seconds", seconds}, {"items", entries}};
+        writeTextFile((fs::path(o.output) / shard.recordName()).string(), record.dump(1));
+        std::cerr << "predict: shard done in " << seconds << " s -> " << o.output << "/" << shard.recordName()
+                  << "; `lighthouse merge " << o.output << "` writes predictions.json once every shard is done\n";
+        return;
+    }
+    for (auto& e : entries) {
+        e.erase("index");
+        e.erase("seconds");
+    }
+    writeTextFile((fs::path(o.output) / kPredictionsIndex).string(), predictionsIndex(model, entries).dump(1));
+    std::cerr << "predict: " << items.size() << " pairs in " << seconds << " s -> " << o.output << "/"
+              << kPredictionsIndex << "\n";
+}
+
 void runPredict(const PredictOptions& o, int threads) {
+    if (!o.pairs.empty() || !o.examples.empty()) return runPredictBatch(o, threads);
+    if (!o.shard.empty()) throw InputError("--shard needs the batch form, --pairs LIST or --examples DIR");
+    if (o.ref.empty() || o.src.empty() || o.cameras.empty())
+        throw InputError("predict needs --ref, --src and --cameras (one pair), or --pairs LIST or --examples DIR");
     if (fileExtension(o.output) != ".vdb") throw InputError("output '" + o.output + "' must end in .vdb");
     const auto start = std::chrono::steady_clock::now();
     net::StereoPair pair{readImage(o.ref), readImage(o.src), loadCamerasFile(o.cameras)};
@@ -79,10 +207,17 @@ void runPredict(const PredictOptions& o, int threads) {
 void addPredictCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<PredictOptions>();
     CLI::App* cmd = app.add_subcommand("predict", netCommandDescription("predict"));
-    cmd->add_option("--ref", o->ref, "Reference image (.png/.jpg sRGB or .exr linear)")->required();
-    cmd->add_option("--src", o->src, "Second image of the stereo pair")->required();
-    cmd->add_option("--cameras", o->cameras, "cameras.json with ref and src (near/far optional: estimated if absent)")
-        ->required();
+    cmd->add_option("--ref", o->ref, "Reference image (.png/.jpg sRGB or .exr linear)");
+    cmd->add_option("--src", o->src, "Second image of the stereo pair");
+    cmd->add_option("--cameras", o->cameras, "cameras.json with ref and src (near/far optional: estimated if absent)");
+    cmd->add_option("--pairs", o->pairs,
+                    "Batch: a list file, one pair a line 'REF SRC CAMERAS [NAME]' (paths relative to the list); "
+                    "-o is then a directory of NAME.vdb and predictions.json");
+    cmd->add_option("--examples", o->examples,
+                    "Batch: every example of a data set (ref.png, src.png, cameras.json), NAME = its directory");
+    cmd->add_option("--shard", o->shard,
+                    "Batch: K/N, predict only pair i with i mod N = K (0-based) and write a shard record; "
+                    "`lighthouse merge OUT` writes predictions.json of all shards");
     cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly all)")
@@ -91,7 +226,8 @@ void addPredictCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     cmd->add_option("--envmap-at", o->envmapsAt, "Also render envmaps at these points X,Y,Z (next to the output)");
     cmd->add_option("--envmap-size", o->envmapSize, "Size of those envmaps, WxH")->capture_default_str();
-    cmd->add_option("-o,--output", o->output, "Output .vdb (MPI planes + lighting volume levels)")->required();
+    cmd->add_option("-o,--output", o->output, "Output .vdb (MPI planes + lighting volume levels); a directory in the batch form")
+        ->required();
     cmd->callback([o, &threads] { runPredict(*o, threads); });
 }
 

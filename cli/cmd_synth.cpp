@@ -1,4 +1,4 @@
-// `lighthouse synth --seed S --count N --out DIR [--size 320x240] [--split train|test]`
+// `lighthouse synth --seed S --count N --out DIR [--size 320x240] [--split train|test] [--shard K/N]`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "synth/dataset.h"
@@ -16,6 +16,7 @@ struct SynthCommandOptions {
     synth::SynthOptions synth;
     std::string size = "320x240";
     std::string envmapSize = "240x120";
+    std::string shard;
 };
 
 std::string duration(double seconds) {
@@ -40,12 +41,21 @@ void showProgress(int done, int total, double seconds) {
 void runSynth(SynthCommandOptions& o) {
     parseSize(o.size, o.synth.width, o.synth.height);
     parseSize(o.envmapSize, o.synth.envWidth, o.synth.envHeight);
+    if (!o.shard.empty()) o.synth.shard = parseShard(o.shard);
     o.synth.validate();
-    std::cerr << "synth: " << o.synth.count << " " << o.synth.split << " examples of "
+    std::cerr << "synth: " << o.synth.count << " " << o.synth.split << " examples";
+    if (o.synth.shard.active)
+        std::cerr << " (shard " << o.synth.shard.index << " of " << o.synth.shard.count << ": examples i with i mod "
+                  << o.synth.shard.count << " = " << o.synth.shard.index << ")";
+    std::cerr << " of "
               << o.synth.width << "x" << o.synth.height << " (envmaps " << o.synth.envWidth << "x"
               << o.synth.envHeight << ") -> " << o.synth.out << "\n";
     synth::writeDataset(o.synth, showProgress);
-    std::cerr << "wrote " << o.synth.out << "/manifest.json and contact_sheet.png\n";
+    if (o.synth.shard.active)
+        std::cerr << "wrote " << o.synth.out << "/" << o.synth.shard.recordName()
+                  << "; `lighthouse merge " << o.synth.out << "` writes manifest.json once every shard is done\n";
+    else
+        std::cerr << "wrote " << o.synth.out << "/manifest.json and contact_sheet.png\n";
 }
 
 }  // namespace
@@ -73,6 +83,9 @@ void addSynthCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--oracle-res", o->synth.oracleResolution, "Voxels per side of each oracle level")
         ->capture_default_str();
+    cmd->add_option("--shard", o->shard,
+                    "K/N: write only examples i with i mod N = K (0-based) and a shard record; several shards "
+                    "share one --out, and `lighthouse merge` writes manifest.json and the contact sheet");
     cmd->add_option("--hdri-dir", o->synth.hdriDir, "Folder of equirectangular .exr panoramas for windows")
         ->capture_default_str();
     cmd->callback([o] { runSynth(*o); });

@@ -1,5 +1,7 @@
 #include "net/evaluation.h"
 
+#include "net/eval_table.h"
+
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "net/predictor.h"
@@ -15,6 +17,9 @@
 #include "synth/ray_tracer.h"
 #include "synth/scene_json.h"
 
+#include <nlohmann/json.hpp>
+
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -46,13 +51,6 @@ void meanColour(const ImageRGB& image, float out[3]) {
     for (size_t i = 0; i < image.pixels.size(); ++i) sum[i % 3] += image.pixels[i];
     const double n = double(image.width) * image.height;
     for (int c = 0; c < 3; ++c) out[c] = float(sum[c] / n);
-}
-
-std::string cell(const std::vector<double>& values, int precision) {
-    const MeanStd m = meanStd(values);
-    std::ostringstream out;
-    out << std::fixed << std::setprecision(precision) << m.mean << " +- " << m.std;
-    return out.str();
 }
 
 // True when every example has the scene.json the oracle is baked from; otherwise says, in one
@@ -93,13 +91,19 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         report.methods.back().name = name;
     }
     std::vector<std::vector<ImageRGB>> sheetRows;
+    std::vector<std::string> sheetRowIds;  // example_envmap, for a shard's strips
+    std::vector<std::size_t> sheetRowScenes;
+    nlohmann::json shardExamples = nlohmann::json::array();
     std::ostringstream csv;
-    csv << "example,envmap,method,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,"
-           "log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error\n";
+    csv << evalCsvHeader();
     std::unique_ptr<synth::PanoramaLibrary> panoramas;
     if (withOracle) panoramas = std::make_unique<synth::PanoramaLibrary>(o.hdriDir);
 
+    std::size_t done = 0, owned = 0;
+    for (size_t s = 0; s < dirs.size(); ++s) owned += o.shard.owns(s) ? 1 : 0;
+    const auto start = std::chrono::steady_clock::now();
     for (size_t s = 0; s < dirs.size(); ++s) {
+        if (!o.shard.owns(s)) continue;
         const TrainingExample ex = loadExample(dirs[s], /*withMasks=*/true);
         StereoPair pair{ex.ref, ex.src, ex.cameras};
         const Prediction prediction = predictor.predict(pair);
@@ -132,49 +136,61 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
                                                  renderWithBackground(mpiOnly, position, gt.width, gt.height, grey),
                                                  resizeImage(global, gt.width, gt.height)};
             if (oracle) predictions.push_back(renderEnvmap(*oracle, position, options));
+            const std::string example = fs::path(dirs[s]).filename().string();
             for (size_t m = 0; m < predictions.size(); ++m) {
                 const EnvmapMetrics metrics = compareEnvmaps(predictions[m], gt, &ex.masks[e]);
-                auto& scores = report.methods[m];
-                scores.psnrAll.push_back(metrics.psnrAll);
-                scores.angularAll.push_back(metrics.angularAll);
-                scores.psnrObserved.push_back(metrics.psnrObserved);
-                scores.angularObserved.push_back(metrics.angularObserved);
-                scores.logLuminanceAll.push_back(metrics.logLuminanceAll);
-                scores.logLuminanceObserved.push_back(metrics.logLuminanceObserved);
-                scores.irradianceError.push_back(metrics.irradianceError);
-                csv << fs::path(dirs[s]).filename().string() << ',' << e << ",\"" << scores.name << "\","
-                    << metrics.psnrAll << ',' << metrics.angularAll << ',' << metrics.psnrObserved << ','
-                    << metrics.angularObserved << ',' << metrics.logLuminanceAll << ','
-                    << metrics.logLuminanceObserved << ',' << metrics.irradianceError << '\n';
+                const MetricValues values = {metrics.psnrAll,         metrics.angularAll,
+                                             metrics.psnrObserved,    metrics.angularObserved,
+                                             metrics.logLuminanceAll, metrics.logLuminanceObserved,
+                                             metrics.irradianceError};
+                addScores(report.methods[m], values);
+                csv << evalCsvRow(example, e, report.methods[m].name, values, o.shard.active);
             }
-            if (sheetRows.size() < 12) {
+            if (sheetRows.size() < kEvalSheetRows) {
                 std::vector<ImageRGB> row = {gt};
                 row.insert(row.end(), predictions.begin(), predictions.end());
                 sheetRows.push_back(std::move(row));
+                sheetRowIds.push_back(example + "_" + std::to_string(e));
+                sheetRowScenes.push_back(s);
             }
         }
-        progress << "eval: " << s + 1 << "/" << dirs.size() << " scenes  (ours " << std::fixed << std::setprecision(2)
+        shardExamples.push_back({{"index", s}, {"id", fs::path(dirs[s]).filename().string()}});
+        progress << "eval: " << ++done << "/" << owned << " scenes  (ours " << std::fixed << std::setprecision(2)
                  << meanStd(report.methods[0].psnrAll).mean << " dB so far, predict " << prediction.seconds << " s)"
                  << std::defaultfloat << std::endl;
     }
 
-    std::ostringstream md;
-    md << "| method | PSNR all (dB) | angular all (deg) | PSNR observed (dB) | angular observed (deg) "
-          "| log-lum RMSE all | log-lum RMSE observed | irradiance rel. error |\n"
-       << "|---|---|---|---|---|---|---|---|\n";
-    for (const auto& m : report.methods)
-        md << "| " << m.name << " | " << cell(m.psnrAll, 2) << " | " << cell(m.angularAll, 2) << " | "
-           << cell(m.psnrObserved, 2) << " | " << cell(m.angularObserved, 2) << " | "
-           << cell(m.logLuminanceAll, 3) << " | " << cell(m.logLuminanceObserved, 3) << " | "
-           << cell(m.irradianceError, 3) << " |\n";
-    md << "\n" << report.methods[0].psnrAll.size() << " envmaps (" << dirs.size()
-       << " scenes) of `" << o.data << "`, model config `" << config.name << "`; mean +- std. "
-       << "Log-lum RMSE: of ln(1 + luminance); irradiance rel. error: |E_pred - E_gt| / E_gt at "
-       << "the six axis normals (docs/metrics.md).\n";
-    report.markdown = md.str();
+    report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
+    if (o.shard.active) {
+        // The shard's share: exact metrics, the strips of its first contact-sheet rows and the
+        // record that the merge reads.
+        const std::string tag = o.shard.tag();
+        const fs::path stripDir = fs::path(o.out) / ("sheet." + tag);
+        fs::create_directories(stripDir);
+        nlohmann::json strips = nlohmann::json::array();
+        for (std::size_t r = 0; r < sheetRows.size(); ++r) {
+            const std::string file = "sheet." + tag + "/" + sheetRowIds[r] + ".exr";
+            writeImage(sheetStrip(sheetRows[r]), (fs::path(o.out) / file).string());
+            strips.push_back({{"scene", sheetRowScenes[r]}, {"file", file}});
+        }
+        std::vector<std::string> methodNames;
+        for (const auto& m : report.methods) methodNames.push_back(m.name);
+        const nlohmann::json record = {
+            {"kind", "eval"}, {"shard", o.shard.index}, {"shards", o.shard.count},
+            {"eval", {{"data", o.data}, {"model", o.model}, {"config", config.name}, {"scenes", dirs.size()},
+                      {"max_scenes", o.maxScenes}, {"methods", methodNames}, {"prune_alpha", o.pruneAlpha}}},
+            {"csv", "metrics." + tag + ".csv"}, {"sheet_rows", strips}, {"examples", shardExamples},
+            {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+        writeTextFile((fs::path(o.out) / ("metrics." + tag + ".csv")).string(), csv.str());
+        writeTextFile((fs::path(o.out) / o.shard.recordName()).string(), record.dump(1));
+        progress << "eval: shard " << o.shard.index << " of " << o.shard.count << " -> " << o.out << "/"
+                 << o.shard.recordName() << "; `lighthouse merge " << o.out
+                 << "` writes table.md once every shard is done\n";
+        return report;
+    }
     writeTextFile((fs::path(o.out) / "table.md").string(), report.markdown);
     writeTextFile((fs::path(o.out) / "metrics.csv").string(), csv.str());
-    writePng(contactSheet(sheetRows, 90), (fs::path(o.out) / "contact_sheet.png").string());
+    writePng(contactSheet(sheetRows, kEvalSheetTileHeight), (fs::path(o.out) / "contact_sheet.png").string());
     progress << "eval: columns of contact_sheet.png: ground truth | ours | MPI only | global envmap"
              << (withOracle ? " | oracle" : "") << "\n";
     return report;

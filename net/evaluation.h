@@ -16,6 +16,8 @@
 //                   the progress stream says so.
 #pragma once
 
+#include "core/shard.h"
+
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -32,6 +34,10 @@ struct EvalOptions {
     std::string device = "cpu";
     int threads = 0;
     float pruneAlpha = -1;   // predict's --prune-alpha; negative: its default
+    // With shard.active: only scene i with shard.owns(i), into out/metrics.shard-K-of-N.csv,
+    // out/sheet.shard-K-of-N/ and out/shard-K-of-N.json; mergeEvalShards (net/eval_table.h)
+    // writes table.md, metrics.csv and contact_sheet.png from a complete set.
+    Shard shard;
 };
 
 struct MethodScores {

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -184,6 +185,38 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
     throw Error("example " + summary.id + ": no acceptable scene in " + std::to_string(kMaxAttempts) + " attempts");
 }
 
+namespace {
+
+// The manifest's description of the data set, without timings or examples; every shard of a
+// set must share it.
+nlohmann::json datasetHeader(const SynthOptions& o) {
+    return {{"generator_version", kGeneratorVersion}, {"split", o.split}, {"first_index", o.seed},
+            {"count", o.count}, {"view_size", {o.width, o.height}}, {"envmap_size", {o.envWidth, o.envHeight}},
+            {"envmaps_per_example", o.envmapsPerExample}, {"supersample", o.supersample},
+            {"bake", {{"texel_size", o.bake.texelSize}, {"max_texels", o.bake.maxTexels},
+                      {"gather_rays", o.bake.gatherRays}, {"light_samples", o.bake.lightSamples},
+                      {"bounces", o.bake.bounces}}}};
+}
+
+std::string exampleId(int index) {
+    char id[16];
+    std::snprintf(id, sizeof id, "%06d", index);
+    return id;
+}
+
+// A picture of the first examples: ref | src | env_0.
+void writeContactSheet(const std::string& out, const std::vector<std::string>& dirs) {
+    std::vector<std::vector<ImageRGB>> rows;
+    for (std::size_t i = 0; i < std::min<std::size_t>(4, dirs.size()); ++i) {
+        const fs::path d(dirs[i]);
+        rows.push_back({readImage((d / "ref.exr").string()), readImage((d / "src.exr").string()),
+                        readImage((d / "env_0.exr").string())});
+    }
+    writePng(contactSheet(rows, 120), (fs::path(out) / "contact_sheet.png").string());
+}
+
+}  // namespace
+
 void writeDataset(const SynthOptions& o, const std::function<void(int, int, double)>& progress) {
     o.validate();
     PanoramaLibrary panoramas(o.hdriDir);
@@ -192,9 +225,11 @@ void writeDataset(const SynthOptions& o, const std::function<void(int, int, doub
     nlohmann::json examples = nlohmann::json::array();
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::string> dirs;
+    int owned = 0, done = 0;
+    for (int i = 0; i < o.count; ++i) owned += o.shard.owns(std::size_t(i)) ? 1 : 0;
     for (int i = 0; i < o.count; ++i) {
-        char id[16];
-        std::snprintf(id, sizeof id, "%06d", i);
+        if (!o.shard.owns(std::size_t(i))) continue;
+        const std::string id = exampleId(i);
         const std::string dir = (fs::path(o.out) / id).string();
         const uint64_t seed = exampleSeed(o.split, o.seed + i);
         ExampleSummary s;
@@ -208,27 +243,55 @@ void writeDataset(const SynthOptions& o, const std::function<void(int, int, doub
         examples.push_back({{"id", s.id}, {"example_seed", seed}, {"scene_seed", s.seed},
                             {"rejected_scenes", s.rejected}, {"seconds", s.seconds}, {"texels", s.texels}});
         if (progress)
-            progress(i + 1, o.count, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            progress(++done, owned, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
-    nlohmann::json manifest = {
-        {"generator_version", kGeneratorVersion}, {"split", o.split}, {"first_index", o.seed}, {"count", o.count},
-        {"view_size", {o.width, o.height}}, {"envmap_size", {o.envWidth, o.envHeight}},
-        {"envmaps_per_example", o.envmapsPerExample}, {"supersample", o.supersample},
-        {"bake", {{"texel_size", o.bake.texelSize}, {"max_texels", o.bake.maxTexels},
-                  {"gather_rays", o.bake.gatherRays}, {"light_samples", o.bake.lightSamples},
-                  {"bounces", o.bake.bounces}}},
-        {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
-        {"examples", examples}};
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (o.shard.active) {
+        nlohmann::json record = {{"kind", "synth"}, {"shard", o.shard.index}, {"shards", o.shard.count},
+                                 {"dataset", datasetHeader(o)}, {"seconds", seconds}, {"examples", examples}};
+        writeTextFile((fs::path(o.out) / o.shard.recordName()).string(), record.dump(1));
+        return;
+    }
+    nlohmann::json manifest = datasetHeader(o);
+    manifest["seconds"] = seconds;
+    manifest["examples"] = examples;
     writeTextFile((fs::path(o.out) / "manifest.json").string(), manifest.dump(1));
+    writeContactSheet(o.out, dirs);
+}
 
-    // A picture of the first examples: ref | src | env_0.
-    std::vector<std::vector<ImageRGB>> rows;
-    for (std::size_t i = 0; i < std::min<std::size_t>(4, dirs.size()); ++i) {
-        const fs::path d(dirs[i]);
-        rows.push_back({readImage((d / "ref.exr").string()), readImage((d / "src.exr").string()),
-                        readImage((d / "env_0.exr").string())});
+int mergeDatasetShards(const std::string& dir) {
+    const fs::path manifestPath = fs::path(dir) / "manifest.json";
+    if (fs::exists(manifestPath))
+        throw FileError("'" + dir + "' is merged already (it holds manifest.json); remove manifest.json to merge again");
+    const std::vector<nlohmann::json> records = readShardSet(dir, "synth", {"dataset"});
+    nlohmann::json manifest = records.front()["dataset"];
+    const int count = manifest.value("count", 0);
+    std::vector<nlohmann::json> examples(std::size_t(std::max(count, 0)));
+    double seconds = 0;
+    for (const nlohmann::json& r : records) {
+        seconds += r.value("seconds", 0.0);
+        for (const nlohmann::json& e : r["examples"]) {
+            const std::string id = e.value("id", "");
+            const int index = std::atoi(id.c_str());
+            if (id != exampleId(index) || index < 0 || index >= count || !examples[std::size_t(index)].is_null())
+                throw FileError("shard records in '" + dir + "' list example '" + id + "' out of place");
+            examples[std::size_t(index)] = e;
+        }
     }
-    writePng(contactSheet(rows, 120), (fs::path(o.out) / "contact_sheet.png").string());
+    std::vector<std::string> dirs;
+    for (int i = 0; i < count; ++i) {
+        if (examples[std::size_t(i)].is_null())
+            throw FileError("shard records in '" + dir + "' lack example " + exampleId(i));
+        const fs::path example = fs::path(dir) / exampleId(i);
+        if (!fs::is_regular_file(example / "scene.json"))
+            throw FileError("example '" + example.string() + "' listed by a shard record is missing or incomplete");
+        dirs.push_back(example.string());
+    }
+    manifest["seconds"] = seconds;
+    manifest["examples"] = examples;
+    writeContactSheet(dir, dirs);
+    writeTextFile(manifestPath.string(), manifest.dump(1));
+    return count;
 }
 
 }  // namespace lh::synth

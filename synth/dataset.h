@@ -10,6 +10,7 @@
 //           [oracle.vdb]                  with --oracle: the voxelised true scene (half floats)
 #pragma once
 
+#include "core/shard.h"
 #include "synth/radiance_field.h"
 
 #include <cstdint>
@@ -34,6 +35,10 @@ struct SynthOptions {
     // target of the network's direct (voxel) supervision.
     int oracleLevels = 0;
     int oracleResolution = 64;
+    // With shard.active: only the examples i with shard.owns(i), and a shard record
+    // (core/shard.h) instead of manifest.json and contact_sheet.png; mergeDatasetShards
+    // writes those once every shard is done.
+    Shard shard;
 
     void validate() const;  // throws InputError / ResourceError
 };
@@ -57,5 +62,11 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
 // then the manifest and a contact sheet. `progress(done, total, secondsSoFar)` after each.
 void writeDataset(const SynthOptions& options,
                   const std::function<void(int, int, double)>& progress = {});
+
+// The merge of a complete set of synth shards written into `dir`: manifest.json (its
+// examples in order; "seconds" is the shards' sum) and contact_sheet.png, as one run would
+// have written them. Throws FileError if a shard is missing, the records disagree, or
+// `dir` was merged already (it holds manifest.json). Returns the number of examples.
+int mergeDatasetShards(const std::string& dir);
 
 }  // namespace lh::synth

@@ -1,0 +1,48 @@
+// The pieces of `lighthouse eval`'s output that need no network: the CSV rows, the Markdown
+// table (Table 2) and the contact sheet, and the merge of a set of eval shards (core/shard.h)
+// into the files one run writes: metrics.csv, table.md and contact_sheet.png, the same bytes.
+#pragma once
+
+#include "net/evaluation.h"
+
+#include <array>
+#include <cstddef>
+#include <string>
+
+namespace lh {
+struct ImageRGB;
+}
+
+namespace lh::net {
+
+// Columns of metrics.csv after example, envmap and method, in order: PSNR all, angular all,
+// PSNR observed, angular observed, log-lum RMSE all, log-lum RMSE observed, irradiance error.
+using MetricValues = std::array<double, 7>;
+
+// Contact sheet: rows of ground truth | predictions, 90 pixels high, the first 12 envmaps.
+constexpr int kEvalSheetTileHeight = 90;
+constexpr std::size_t kEvalSheetRows = 12;
+
+std::string evalCsvHeader();
+// One row; `exact` writes 17 significant digits (a shard's CSV, read back by the merge),
+// otherwise the stream's default 6 (metrics.csv).
+std::string evalCsvRow(const std::string& example, std::size_t envmap, const std::string& method,
+                       const MetricValues& values, bool exact);
+void addScores(MethodScores& scores, const MetricValues& values);
+
+// Table 2 in Markdown, with its note on `envmaps` of `scenes` scenes of `data`.
+std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::size_t scenes,
+                              const std::string& data, const std::string& configName);
+
+// A one-row contact sheet, the strip of rows that `stackSheetStrips` stacks into the sheet
+// contactSheet() would have made of all rows at once.
+ImageRGB sheetStrip(const std::vector<ImageRGB>& row);
+ImageRGB stackSheetStrips(const std::vector<ImageRGB>& strips);
+
+// Merges the eval shards in `dir` (each wrote shard-K-of-N.json, metrics.shard-K-of-N.csv and
+// sheet.shard-K-of-N/): writes table.md, metrics.csv and contact_sheet.png and returns the
+// table. Throws FileError if a shard is missing, the records disagree, or `dir` was merged
+// already (it holds table.md).
+std::string mergeEvalShards(const std::string& dir);
+
+}  // namespace lh::net
