@@ -21,6 +21,7 @@ void addBenchSparsityCommand(CLI::App& app);
 void addEditCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addImportCommand(CLI::App& app);
+void addCamerasCommand(CLI::App& app);
 void addMergeCommand(CLI::App& app);
 // The prediction network's commands (built with libtorch only); `threads` is the global
 // --threads option, read when the command runs.

@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     lh::cli::addEditCommand(app);
     lh::cli::addExportCommand(app);
     lh::cli::addImportCommand(app);
+    lh::cli::addCamerasCommand(app);
     lh::cli::addMergeCommand(app);
     lh::cli::addBenchEnvmapCommand(app);
     lh::cli::addSparsifyCommand(app);

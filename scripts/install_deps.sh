@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   libembree-dev                   # ray casting: synthetic scenes, inserted objects
   libtinyobjloader-dev            # OBJ meshes of inserted objects
+  libexif-dev                     # EXIF focal lengths of real photos (lighthouse cameras --exif)
   libtorch-dev                    # the prediction network (net/), CPU build
   libopenblas0-pthread            # fast BLAS for libtorch (the reference BLAS is ~50x slower)
   python3-openvdb python3-numpy   # interop tests: files read and written by python3-openvdb
