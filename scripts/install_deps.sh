@@ -15,6 +15,7 @@ packages=(
   libopenblas0-pthread            # fast BLAS for libtorch (the reference BLAS is ~50x slower)
   python3-openvdb python3-numpy   # interop tests: files read and written by python3-openvdb
   blender                         # DCC round trip: Cycles renders of `lighthouse export` (tests/python/dcc_blender_cycles.py)
+  slurm-wlm munge                 # batch jobs on Slurm: scripts/slurm/, tested on a one-node cluster (tests/slurm/)
 )
 
 run() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
