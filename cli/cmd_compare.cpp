@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/path_guard.h"
 #include "render/image_io.h"
 #include "render/metrics.h"
 
@@ -184,6 +185,11 @@ void compareBatch(const CompareOptions& o) {
     if (!o.csv.empty()) csv = std::make_unique<AtomicOutput>(o.csv);
 
     const std::vector<EnvmapPair> pairs = findPairs(o.pred, o.gt);
+    if (!o.csv.empty()) {
+        std::vector<NamedInput> inputs;
+        for (const EnvmapPair& p : pairs) inputs.insert(inputs.end(), {{p.pred, "a prediction in PRED_DIR"}, {p.gt, "a ground truth in GT_DIR"}, {p.mask, "a mask in GT_DIR"}});
+        requireOutputIsNotAnInput(o.csv, "--csv", inputs);
+    }
     const int total = int(pairs.size());
     const int progressStep = std::max(1, total / 10);
     std::vector<EnvmapMetrics> metrics;

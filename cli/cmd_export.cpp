@@ -3,6 +3,7 @@
 // values within half precision) plus manifest.json; see houdini_export/README.md.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "core/path_guard.h"
 #include "houdini_export/dcc_export.h"
 
 #include <iostream>
@@ -14,11 +15,14 @@ namespace {
 struct ExportOptions {
     std::string input, output, target;
     bool strict = false;
+    bool force = false;
 };
 
 void runExport(const ExportOptions& o) {
     DccExportOptions options;
     options.dcc = parseDcc(o.target, "--for");
+    options.replaceExisting = o.force;
+    requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the input volume"}});
     const LightingVolume volume = loadVolumeForCli(o.input, o.strict);
     const DccExportReport report = exportForDcc(volume, o.output, options);
     for (const auto& w : report.warnings) std::cerr << "warning: " << w << "\n";
@@ -39,8 +43,9 @@ void addExportCommand(CLI::App& app) {
                   "in the program's axes, plus manifest.json");
     cmd->add_option("input", o->input, "Lighting volume (.vdb)")->required();
     cmd->add_option("--for", o->target, "Target program: blender or houdini")->required();
-    cmd->add_option("-o,--output", o->output, "Export directory (created; replaced only if it is an export)")
+    cmd->add_option("-o,--output", o->output, "Export directory (created; an existing export is replaced only with --force)")
         ->required();
+    cmd->add_flag("--force", o->force, "Replace an existing export at --output (edits made to it are lost)");
     cmd->add_flag("--strict", o->strict, "Refuse NaN/Inf/negative values instead of sanitising them");
     cmd->callback([o] { runExport(*o); });
 }

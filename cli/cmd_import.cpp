@@ -2,6 +2,7 @@
 // Reads an export (possibly edited in Blender, Houdini or python3-openvdb) back into a
 // lighting volume: shells become levels, axes return to lighthouse's world frame.
 #include "cli/commands.h"
+#include "core/path_guard.h"
 #include "houdini_export/dcc_import.h"
 #include "vdb/volume_io.h"
 
@@ -18,10 +19,12 @@ struct ImportOptions {
 
 void runImport(const ImportOptions& o) {
     const Dcc dcc = parseDcc(o.source, "--from");
+    requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the export directory"}});
     std::vector<std::string> warnings;
     const LightingVolume volume = importFromDcc(o.input, dcc, &warnings);
     for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
-    saveVolume(o.output, volume, VolumeSaveOptions{o.half});
+    const VolumeSaveReport saved = saveVolume(o.output, volume, VolumeSaveOptions{o.half});
+    if (!halfClampWarning(saved).empty()) std::cerr << "warning: " << halfClampWarning(saved) << " (--half)\n";
     std::cout << o.input << " -> " << o.output << ": " << volume.levels.size() << " level(s), "
               << volume.activeVoxelCount() << " active voxel(s)\n";
 }

@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/path_guard.h"
 #include "render/contact_sheet.h"
 #include "render/envmap.h"
 #include "render/image_io.h"
@@ -62,6 +63,15 @@ void writeOutput(const ImageRGB& image, const std::string& path, const InsertCom
 void runInsert(const InsertCommandOptions& o) {
     const std::string ext = fileExtension(o.output);
     if (ext != ".exr" && ext != ".png") throw InputError("output '" + o.output + "' must end in .exr or .png");
+    std::vector<NamedInput> inputs = {{o.volume, "--volume"}, {o.image, "--image"}, {o.cameras, "--cameras"},
+                                      {o.path, "--path"}};
+    for (const auto& object : o.objects) inputs.push_back({object, "--object"});
+    requireOutputIsNotAnInput(o.output, "-o", inputs);
+    if (o.alsoPng) requireOutputIsNotAnInput(withExtension(o.output, ".png"), "--png", inputs);
+    if (!o.path.empty()) {
+        requireOutputIsNotAnInput(withExtension(o.output, "") + "_sheet.png", "the contact sheet", inputs);
+        requireOutputIsNotAnInput(withExtension(o.output, "") + "_epipolar.png", "the epipolar image", inputs);
+    }
     for (const auto& s : o.scales)
         try {
             if (!(std::stod(s) > 0)) throw std::invalid_argument("scale");

@@ -34,7 +34,8 @@ void makeExample(const MakeExampleOptions& o) {
         if (!f) throw FileError("cannot write '" + o.cameras + "'");
     }
     const LightingVolume volume = makeExampleVolume(o.levels, o.resolution);
-    saveVolume(o.output, volume, VolumeSaveOptions{o.half});
+    const VolumeSaveReport saved = saveVolume(o.output, volume, VolumeSaveOptions{o.half});
+    if (!halfClampWarning(saved).empty()) std::cerr << "warning: " << halfClampWarning(saved) << " (--half)\n";
     std::cerr << "example room: " << volume.levels.size() << " levels of " << o.resolution
               << "^3, " << volume.activeVoxelCount() << " active voxels -> " << o.output << "\n";
     if (cameras) {

@@ -1,6 +1,7 @@
 // `lighthouse oracle SCENE_DIR -o oracle.vdb [--levels 5 --res 64] [--envmaps-out DIR]`
 #include "cli/commands.h"
 #include "core/errors.h"
+#include "core/path_guard.h"
 #include "render/envmap.h"
 #include "render/image_io.h"
 #include "synth/oracle.h"
@@ -30,9 +31,18 @@ void runOracle(const OracleCommandOptions& o) {
     const fs::path dir(o.sceneDir);
     if (!fs::is_directory(dir))
         throw FileError("'" + o.sceneDir + "' is not an example directory (expected scene.json and cameras.json)");
+    // The oracle may go inside the example (synth puts oracle.vdb there), but not onto what it reads.
+    const std::vector<NamedInput> inputs = {{(dir / "scene.json").string(), "the example's scene.json"},
+                                            {(dir / "cameras.json").string(), "the example's cameras.json"},
+                                            {o.hdriDir, "--hdri-dir"}};
+    requireOutputIsNotAnInput(o.output, "-o", inputs);
     synth::BakeOptions bake;
     const synth::Scene scene = synth::loadScene((dir / "scene.json").string(), &bake);
     const CamerasFile cameras = loadCamerasFile((dir / "cameras.json").string());
+    if (!o.envmapsOut.empty())
+        for (const auto& e : cameras.envmaps)  // the ground-truth envmaps are read for their size
+            requireOutputIsNotAnInput((fs::path(o.envmapsOut) / e.file).string(), "--envmaps-out",
+                                      {{(dir / e.file).string(), "the example's " + e.file}});
     if (!cameras.far) throw InputError("'" + (dir / "cameras.json").string() + "' has no 'far' depth");
     const VolumeLayout layout = VolumeLayout::fromFarDepth(*cameras.far, o.levels, o.resolution);
 

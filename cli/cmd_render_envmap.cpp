@@ -4,6 +4,7 @@
 #include "cli/quadrature_flags.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/path_guard.h"
 #include "render/envmap.h"
 #include "render/image_io.h"
 
@@ -49,15 +50,28 @@ void renderEnvmaps(const RenderEnvmapOptions& o) {
     if (!o.pointsFile.empty())
         for (const auto& p : readPointsFile(o.pointsFile)) points.push_back(p);
     if (points.empty()) throw InputError("give at least one point with --at X,Y,Z or --points FILE");
+    const auto outputPath = [&](std::size_t i) { return points.size() == 1 ? o.output : numberedPath(o.output, int(i)); };
+    const std::vector<NamedInput> inputs = {{o.file, "the input volume"}, {o.pointsFile, "--points"}};
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        requireOutputIsNotAnInput(outputPath(i), "-o", inputs);
+        if (o.alsoPng && ext == ".exr") requireOutputIsNotAnInput(withExtension(outputPath(i), ".png"), "--png", inputs);
+    }
 
     const LightingVolume volume = loadVolumeForCli(o.file, o.strict);
     const RenderVolume prepared(volume);
+    for (const Vec3d& p : points) {
+        bool inside = false;
+        for (const auto& level : volume.levels) inside = inside || level.containsWorld(p);
+        if (!inside)
+            std::cerr << "warning: point (" << p.x() << ", " << p.y() << ", " << p.z()
+                      << ") lies outside every level of the volume: its envmap sees the volume from outside\n";
+    }
     for (std::size_t i = 0; i < points.size(); ++i) {
         const auto start = std::chrono::steady_clock::now();
         const ImageRGB envmap = renderEnvmap(prepared, points[i], options);
         const double ms = std::chrono::duration<double, std::milli>(
                               std::chrono::steady_clock::now() - start).count();
-        const std::string path = points.size() == 1 ? o.output : numberedPath(o.output, int(i));
+        const std::string path = outputPath(i);
         writeImage(envmap, path, o.exposure);
         if (o.alsoPng && ext == ".exr") writePng(envmap, withExtension(path, ".png"), o.exposure);
         std::cerr << "[" << i + 1 << "/" << points.size() << "] envmap at (" << points[i].x()

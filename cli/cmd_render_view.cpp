@@ -3,6 +3,7 @@
 #include "cli/commands.h"
 #include "cli/quadrature_flags.h"
 #include "core/errors.h"
+#include "core/path_guard.h"
 #include "render/image_io.h"
 #include "render/render_volume.h"
 #include "render/view.h"
@@ -26,6 +27,7 @@ struct RenderViewOptions {
 void renderViewCommand(const RenderViewOptions& o) {
     if (!(o.exposure > 0.f) || !std::isfinite(o.exposure))
         throw InputError("exposure must be a positive number");
+    requireOutputIsNotAnInput(o.output, "-o", {{o.file, "the input volume"}, {o.cameras, "--cameras"}});
     const CamerasFile cameras = loadCamerasFile(o.cameras);
     const PinholeCamera& camera = cameras.view(o.view);
     MarchOptions march;

@@ -26,9 +26,13 @@ AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPa
     // Unique per process and per call: concurrent writers never share a temporary.
     static std::atomic<unsigned> counter{0};
     std::string ext = p.extension().string();  // keep the extension: some writers check it
-    tempPath_ = (dir / ("." + p.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                        std::to_string(counter++) + ext))
-                    .string();
+    const std::string tag = ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+    std::string stem = p.stem().string();
+    // A file name may hold at most kMaxFileNameBytes bytes: shorten the stem of the temporary
+    // so that an output name near the limit still gets one.
+    const std::size_t fixed = 1 + tag.size() + ext.size();
+    if (fixed + stem.size() > kMaxFileNameBytes) stem.resize(kMaxFileNameBytes > fixed ? kMaxFileNameBytes - fixed : 0);
+    tempPath_ = (dir / ("." + stem + tag + ext)).string();
 }
 
 AtomicOutput::~AtomicOutput() {

@@ -2,9 +2,13 @@
 // half-written output under the final name.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace lh {
+
+// NAME_MAX of Linux file systems (ext4, xfs, tmpfs): bytes in one path component.
+constexpr std::size_t kMaxFileNameBytes = 255;
 
 class AtomicOutput {
 public:

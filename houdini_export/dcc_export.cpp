@@ -166,6 +166,9 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
     if (fs::exists(finalDir) && !isExportDirectory(finalDir))
         throw FileError("'" + outDir + "' exists and is not a lighthouse export (no " + kDccManifestName +
                         "); refusing to overwrite it");
+    if (fs::exists(finalDir) && !options.replaceExisting)
+        throw FileError("'" + outDir + "' is an existing export, and edits made to it in Blender or Houdini would be "
+                        "lost; pass --force to replace it, or choose another directory");
 
     DccExportReport report;
     const std::vector<VolumeLevel> shells = makeShells(volume);

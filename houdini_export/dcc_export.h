@@ -27,6 +27,9 @@ struct DccExportOptions {
     // Every stored value (density, emission and radiance components) is kept at or below this,
     // so that half-precision renderers do not overflow to infinity.
     float maxValue = kDccMaxValue;
+    // An existing export at the output is refused unless this is set (`export --force`): the
+    // user may have edited it in Blender or Houdini.
+    bool replaceExisting = false;
 };
 
 // What the value limits changed, per export.

@@ -273,27 +273,8 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
     return out;
 }
 
-void saveSparseVolume(const std::string& path, const LightingVolume& volume, bool halfPrecision) {
-    if (!halfPrecision) {
-        saveVolume(path, volume, VolumeSaveOptions{false});
-        return;
-    }
-    LightingVolume clamped;
-    clamped.layout = volume.layout;
-    clamped.refCamera = volume.refCamera;
-    for (const auto& level : volume.levels) {
-        VolumeLevel copy = deepCopy(level);
-        for (auto it = copy.density->beginValueAll(); it; ++it)
-            if (*it > kHalfSafeMax) it.setValue(kHalfSafeMax);
-        for (auto it = copy.color->beginValueAll(); it; ++it) {
-            const openvdb::Vec3s c = *it;
-            if (c.x() > kHalfSafeMax || c.y() > kHalfSafeMax || c.z() > kHalfSafeMax)
-                it.setValue(openvdb::Vec3s(std::min(c.x(), kHalfSafeMax), std::min(c.y(), kHalfSafeMax),
-                                           std::min(c.z(), kHalfSafeMax)));
-        }
-        clamped.levels.push_back(copy);
-    }
-    saveVolume(path, clamped, VolumeSaveOptions{true});
+VolumeSaveReport saveSparseVolume(const std::string& path, const LightingVolume& volume, bool halfPrecision) {
+    return saveVolume(path, volume, VolumeSaveOptions{halfPrecision});
 }
 
 }  // namespace lh

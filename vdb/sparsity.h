@@ -1,4 +1,4 @@
-// Storing only what a scene needs (issue 7): error-bounded sparsity of a lighting volume.
+// Storing only what a scene needs: error-bounded sparsity of a lighting volume.
 //
 // One bound, `tau`, decides every drop: the largest change of linear radiance (display white =
 // 1, the peak of docs/conventions.md's PSNR) that pruning may cause in any envmap pixel, i.e. along
@@ -105,14 +105,10 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
 // Throws InputError unless 0 < near <= far are finite.
 int levelsForDepthRange(double near, double far, int maxLevels = 5);
 
-// Largest values a 16-bit half stores (65504) minus a margin: save clamps to it.
-constexpr float kHalfSafeMax = 65000.f;
-
-// Writes a sparsified volume Blosc-compressed, optionally as half floats. With half
-// precision, values above kHalfSafeMax are clamped first (a density of 65000 per scene unit
-// is opaque over any voxel above 1 mm; radiance above it saturates) so nothing overflows to
-// Inf; the relative rounding error of every stored value is then at most 2^-11.
-void saveSparseVolume(const std::string& path, const LightingVolume& volume, bool halfPrecision);
+// Writes a sparsified volume Blosc-compressed, optionally as half floats (values above
+// kHalfSafeMax clamped, vdb/volume_io.h); the relative rounding error of every stored value is
+// then at most 2^-11.
+VolumeSaveReport saveSparseVolume(const std::string& path, const LightingVolume& volume, bool halfPrecision);
 
 // Active density voxels of every level (tiles count their voxels).
 openvdb::Index64 activeDensityVoxels(const LightingVolume& volume);

@@ -114,8 +114,51 @@ openvdb::CoordBBox storedDomain(const openvdb::GridBase& grid) {
 
 }  // namespace
 
-void saveVdb(const std::string& path, const LightingVolume* volume, const Mpi* mpi,
-             const VolumeSaveOptions& options) {
+namespace {
+
+// Clamps a grid's values (voxels and tiles) to kHalfSafeMax per component; returns how many changed.
+std::size_t clampToHalf(openvdb::FloatGrid& grid) {
+    std::size_t n = 0;
+    for (auto it = grid.beginValueAll(); it; ++it)
+        if (*it > kHalfSafeMax) it.setValue(kHalfSafeMax), ++n;
+    return n;
+}
+std::size_t clampToHalf(openvdb::Vec3SGrid& grid) {
+    std::size_t n = 0;
+    for (auto it = grid.beginValueAll(); it; ++it) {
+        const openvdb::Vec3s c = *it;
+        if (c.x() > kHalfSafeMax || c.y() > kHalfSafeMax || c.z() > kHalfSafeMax) {
+            it.setValue(openvdb::Vec3s(std::min(c.x(), kHalfSafeMax), std::min(c.y(), kHalfSafeMax),
+                                       std::min(c.z(), kHalfSafeMax)));
+            ++n;
+        }
+    }
+    return n;
+}
+
+// Whether any value of the grid exceeds kHalfSafeMax (cheap: no copy).
+bool exceedsHalf(const openvdb::FloatGrid& grid) {
+    for (auto it = grid.cbeginValueAll(); it; ++it)
+        if (*it > kHalfSafeMax) return true;
+    return false;
+}
+bool exceedsHalf(const openvdb::Vec3SGrid& grid) {
+    for (auto it = grid.cbeginValueAll(); it; ++it)
+        if ((*it).x() > kHalfSafeMax || (*it).y() > kHalfSafeMax || (*it).z() > kHalfSafeMax) return true;
+    return false;
+}
+
+}  // namespace
+
+std::string halfClampWarning(const VolumeSaveReport& report) {
+    if (report.valuesClampedToHalf == 0) return "";
+    return std::to_string(report.valuesClampedToHalf) + " value(s) above " + std::to_string(int(kHalfSafeMax)) +
+           " were clamped to fit half precision";
+}
+
+VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, const Mpi* mpi,
+                         const VolumeSaveOptions& options) {
+    VolumeSaveReport report;
     initialiseOpenVdb();
     if (!volume && !mpi) throw InputError("nothing to save to '" + path + "'");
     openvdb::GridPtrVec grids;
@@ -130,10 +173,19 @@ void saveVdb(const std::string& path, const LightingVolume* volume, const Mpi* m
                                 openvdb::StringMetadata(cameraToJson(*volume->refCamera)));
         for (std::size_t k = 0; k < volume->levels.size(); ++k) {
             const VolumeLevel& level = volume->levels[k];
-            // Shallow copies: metadata and names are set on the copies, trees are shared.
-            auto density = level.density->copyGrid();
-            auto color = level.color->copyGrid();
-            for (auto& g : {density, color}) {
+            // Shallow copies: metadata and names are set on the copies, trees are shared
+            // (deep copies only where half precision needs values clamped).
+            openvdb::FloatGrid::Ptr density = level.density->copy();
+            openvdb::Vec3SGrid::Ptr color = level.color->copy();
+            if (options.halfPrecision && exceedsHalf(*density)) {
+                density = level.density->deepCopy();
+                report.valuesClampedToHalf += clampToHalf(*density);
+            }
+            if (options.halfPrecision && exceedsHalf(*color)) {
+                color = level.color->deepCopy();
+                report.valuesClampedToHalf += clampToHalf(*color);
+            }
+            for (openvdb::GridBase::Ptr g : {openvdb::GridBase::Ptr(density), openvdb::GridBase::Ptr(color)}) {
                 g->setName(g == density ? densityGridName(int(k)) : colorGridName(int(k)));
                 g->insertMeta("level", openvdb::Int32Metadata(int(k)));
                 g->insertMeta("lighthouse_domain_min", openvdb::Vec3IMetadata(level.domain.min().asVec3i()));
@@ -162,6 +214,7 @@ void saveVdb(const std::string& path, const LightingVolume* volume, const Mpi* m
         throw FileError("cannot write '" + path + "': " + e.what());
     }
     out.commit();
+    return report;
 }
 
 LightingVolume loadVolume(const std::string& path, std::vector<std::string>* warnings,

@@ -17,6 +17,7 @@
 #include "vdb/lighting_volume.h"
 #include "vdb/mpi.h"
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -32,17 +33,29 @@ struct VolumeLoadOptions {
     NonFinitePolicy nonFinite = NonFinitePolicy::Sanitise;
 };
 
+// Largest values a 16-bit half stores (65504) minus a margin: saving in half precision clamps
+// the volume's densities and radiance components to it, so nothing overflows to Inf (a density
+// of 65000 per scene unit is opaque over any voxel above 1 mm; radiance above it saturates).
+constexpr float kHalfSafeMax = 65000.f;
+
 struct VolumeSaveOptions {
     bool halfPrecision = false;  // store float values as 16-bit halves on disk
 };
 
+// What saving changed, for the caller to report.
+struct VolumeSaveReport {
+    std::size_t valuesClampedToHalf = 0;  // voxels and tiles whose value exceeded kHalfSafeMax
+};
+
 // Writes the volume (and optionally an MPI) to `path` atomically, Blosc-compressed.
-void saveVdb(const std::string& path, const LightingVolume* volume, const Mpi* mpi,
-             const VolumeSaveOptions& options = {});
-inline void saveVolume(const std::string& path, const LightingVolume& volume,
-                       const VolumeSaveOptions& options = {}) {
-    saveVdb(path, &volume, nullptr, options);
+VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, const Mpi* mpi,
+                         const VolumeSaveOptions& options = {});
+inline VolumeSaveReport saveVolume(const std::string& path, const LightingVolume& volume,
+                                   const VolumeSaveOptions& options = {}) {
+    return saveVdb(path, &volume, nullptr, options);
 }
+// "N value(s) above 65000 were clamped to fit half precision", or "" when none were.
+std::string halfClampWarning(const VolumeSaveReport& report);
 
 // Loads the lighting volume of a .vdb file. Throws FileError naming the file (and grid) if
 // the file is not a VDB, has no density/colour pair, has wrong grid types or non-affine

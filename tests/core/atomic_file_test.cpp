@@ -46,5 +46,20 @@ TEST(AtomicOutput, MissingDirectoryIsAFileError) {
     EXPECT_EQ(fileExtension("noext"), "");
 }
 
+TEST(AtomicOutput, NamesNearTheFileNameLimitStillGetATemporary) {
+    fs::path dir = freshDir("long");
+    const std::string name = std::string(kMaxFileNameBytes - 4, 'n') + ".vdb";  // 255 bytes
+    const std::string target = (dir / name).string();
+    {
+        AtomicOutput out(target);
+        EXPECT_LE(fs::path(out.tempPath()).filename().string().size(), kMaxFileNameBytes);
+        EXPECT_EQ(fs::path(out.tempPath()).extension(), ".vdb");
+        std::ofstream(out.tempPath()) << "data";
+        out.commit();
+    }
+    EXPECT_TRUE(fs::is_regular_file(target));
+    fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace lh

@@ -146,9 +146,14 @@ TEST(DccExport, NeverOverwritesSomethingElseNorLeavesTemporaries) {
     EXPECT_THROW(exportForDcc(volume, dir.string(), {}), FileError);
     EXPECT_TRUE(fs::exists(dir / "precious.txt"));
     fs::remove_all(dir);
-    // An earlier export is replaced whole.
+    // An earlier export (perhaps edited) is kept, unless replacing is asked for; then it is
+    // replaced whole.
     exportForDcc(makeExampleVolume(3, 8), dir.string(), {});
-    exportForDcc(volume, dir.string(), {});
+    EXPECT_THROW(exportForDcc(volume, dir.string(), {}), FileError);
+    EXPECT_TRUE(fs::exists(dir / dccLevelFileName(2)));
+    DccExportOptions replace;
+    replace.replaceExisting = true;
+    exportForDcc(volume, dir.string(), replace);
     EXPECT_FALSE(fs::exists(dir / dccLevelFileName(2)));
     EXPECT_THROW(exportForDcc(volume, (dir / "no" / "such").string(), {}), FileError);
     for (const auto& e : fs::directory_iterator(dir.parent_path()))
