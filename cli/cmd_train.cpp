@@ -1,4 +1,6 @@
 // `lighthouse train --data DIR [--config standard] --out model.pt [--checkpoint PATH] [--init MODEL]`
+// Data-parallel: `[--batch B] --world-size N --rank R --master HOST:PORT`, or torchrun's or
+// srun's variables (net/distributed.h, docs/distributed.md).
 #include "cli/commands.h"
 #include "cli/net_commands.h"
 #include "net/trainer.h"
@@ -30,7 +32,8 @@ void addTrainCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     cmd->add_flag("!--float-model", o->halfModel, "Write OUT in float32 (default: half precision, half the size)");
     cmd->add_flag("!--no-augment", o->augment, "No exposure, white-balance and noise augmentation");
-    cmd->add_option("--iterations", o->iterations, "Training iterations (batch 1)")->capture_default_str();
+    cmd->add_option("--iterations", o->iterations, "Training iterations (optimiser steps, of --batch examples each)")
+        ->capture_default_str();
     cmd->add_option("--lr", o->learningRate, "Adam learning rate (divided by 10 for the last 20%)")
         ->capture_default_str();
     cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")->capture_default_str();
@@ -44,8 +47,24 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--vgg", o->vggWeights,
                     "VGG-19 weights for the paper's perceptual loss (TorchScript; see net/vgg_loss.h); default: L1 + gradients");
     cmd->add_flag("!--no-resume", o->resume, "Start afresh even if the checkpoint exists");
-    cmd->callback([o, &threads] {
+    cmd->add_option("--batch", o->batch,
+                    "Examples per iteration over all ranks (the gradient is their mean); a multiple of --world-size")
+        ->capture_default_str();
+    auto dist = std::make_shared<net::DistributedFlags>();
+    cmd->add_option("--world-size", dist->worldSize,
+                    "Data-parallel: number of processes (default: WORLD_SIZE, or srun's task count, or 1)");
+    cmd->add_option("--rank", dist->rank, "Data-parallel: this process, 0 .. world size - 1 (default: RANK or SLURM_PROCID)");
+    cmd->add_option("--master", dist->master,
+                    "Data-parallel: HOST:PORT of rank 0, which serves the rendezvous (default: MASTER_ADDR:MASTER_PORT)");
+    cmd->add_option("--dist-timeout", dist->timeoutSeconds,
+                    "Data-parallel: seconds to wait for the rendezvous and for any collective before failing")
+        ->capture_default_str();
+    cmd->add_option("--dist-backend", dist->backend,
+                    "Data-parallel: gloo (CPU), or nccl with --device cuda in a CUDA build (docs/distributed.md)")
+        ->capture_default_str();
+    cmd->callback([o, dist, &threads] {
         o->threads = threads;
+        o->distributed = net::resolveDistributed(*dist);
         net::train(*o, std::cerr);
     });
 }

@@ -6,6 +6,7 @@
 #include "net/augment.h"
 #include "net/curve_plot.h"
 #include "net/device.h"
+#include "net/distributed.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
 #include "net/mpi_render.h"
@@ -40,6 +41,10 @@ void TrainOptions::validate() const {
     if (supervision != "direct" && supervision != "paper")
         throw InputError("--supervision must be 'direct' or 'paper', got '" + supervision + "'");
     if (stopAfter < 0) throw InputError("--stop-after must be at least 0");
+    if (batch < 1 || batch > 4096) throw InputError("--batch must be in [1, 4096]");
+    if (batch % distributed.worldSize != 0)
+        throw InputError("--batch " + std::to_string(batch) + " must be a multiple of the world size " +
+                         std::to_string(distributed.worldSize) + " (each rank takes an equal slice)");
     (configOverride ? *configOverride : NetConfig::byName(config)).validate();
 }
 
@@ -57,11 +62,12 @@ struct LogRow {
     double valPsnr = NAN, valAngular = NAN;
     double voxel = 0, depth = 0;
     double secondsData = 0, secondsForward = 0, secondsBackward = 0;  // per iteration, mean
+    double secondsAllReduce = 0;  // per iteration, mean: data-parallel communication
 };
 
 constexpr const char* kLogHeader =
     "iteration,stage,loss_total,loss_view,loss_envmap,loss_adversarial,loss_discriminator,lr,it_per_s,"
-    "val_psnr_db,val_angular_deg,loss_voxel,loss_depth,s_data,s_forward,s_backward";
+    "val_psnr_db,val_angular_deg,loss_voxel,loss_depth,s_data,s_forward,s_backward,s_allreduce";
 
 // Direct supervision runs every network from the start and has no adversarial stage.
 int stageAt(int iteration, int total, bool direct) {
@@ -174,6 +180,7 @@ std::vector<LogRow> readLog(const std::string& path, int lastIteration) {
             else if (n == "s_data") r.secondsData = v;
             else if (n == "s_forward") r.secondsForward = v;
             else if (n == "s_backward") r.secondsBackward = v;
+            else if (n == "s_allreduce") r.secondsAllReduce = v;
         }
         if (r.iteration <= lastIteration) rows.push_back(r);
     }
@@ -187,7 +194,7 @@ void writeLog(const TrainOptions& o, const std::vector<LogRow>& log) {
         csv << r.iteration << ',' << r.stage << ',' << r.total << ',' << r.view << ',' << r.envmap << ','
             << r.adversarial << ',' << r.discriminator << ',' << r.learningRate << ',' << r.itPerSecond << ','
             << r.valPsnr << ',' << r.valAngular << ',' << r.voxel << ',' << r.depth << ',' << r.secondsData << ','
-            << r.secondsForward << ',' << r.secondsBackward << '\n';
+            << r.secondsForward << ',' << r.secondsBackward << ',' << r.secondsAllReduce << '\n';
     writeTextFile(o.out + ".csv", csv.str());
     CurveSeries total{"training loss (sum of the terms)", {}, {}};
     CurveSeries view{"held-out view loss", {}, {}}, env{"envmap loss", {}, {}};
@@ -294,8 +301,16 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-void train(const TrainOptions& o, std::ostream& progress) {
+void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     o.validate();
+    // Data-parallel: the rendezvous first, so that a rank with bad options fails every rank
+    // soon; only rank 0 reports progress and writes files.
+    std::unique_ptr<Communicator> comm;
+    if (o.distributed.active()) comm = std::make_unique<Communicator>(o.distributed);
+    const bool root = !comm || comm->rank() == 0;
+    const int world = comm ? comm->worldSize() : 1, rank = comm ? comm->rank() : 0;
+    std::ostream discard(nullptr);
+    std::ostream& progress = root ? progressOfEveryRank : discard;
     setTorchThreads(o.threads);
     const torch::Device device = selectDevice(o.device);
     torch::manual_seed(o.seed);
@@ -339,6 +354,31 @@ void train(const TrainOptions& o, std::ostream& progress) {
                      << " colour anchor; this run trains " << (s.net->config.colourAnchor ? "with" : "without") << " one\n";
     }
     const NetConfig& config = s.net->config;
+    if (comm) {
+        // Every rank starts from rank 0's weights, at its iteration, on the same data.
+        std::vector<torch::Tensor> weights = s.net->parameters();
+        for (const auto& p : s.discriminator->parameters()) weights.push_back(p);
+        {
+            torch::NoGradGuard noGrad;
+            comm->broadcastFromRankZero(weights, "the broadcast of rank 0's weights");
+        }
+        const long long iteration0 = comm->broadcastValue(s.iteration, "the check of the checkpoints");
+        const long long scenes0 = comm->broadcastValue((long long)trainDirs.size(), "the check of the data");
+        if (iteration0 != s.iteration)
+            throw FileError("rank " + std::to_string(rank) + " starts at iteration " + std::to_string(s.iteration) +
+                            " but rank 0 at " + std::to_string(iteration0) + ": every rank must read the same checkpoint '" +
+                            o.checkpointPath() + "' (a shared file system)");
+        if (scenes0 != (long long)trainDirs.size())
+            throw FileError("rank " + std::to_string(rank) + " sees " + std::to_string(trainDirs.size()) +
+                            " training scenes in '" + o.data + "' but rank 0 " + std::to_string(scenes0) +
+                            ": every rank must read the same data set (a shared file system)");
+        std::size_t count = 0;
+        for (const auto& p : s.net->parameters()) count += std::size_t(p.numel());
+        progressOfEveryRank << "train: rank " << rank << " of " << world << " joined at " << o.distributed.masterAddress
+                            << ":" << o.distributed.masterPort << "; examples " << rank * (o.batch / world) << ".."
+                            << (rank + 1) * (o.batch / world) - 1 << " of each batch of " << o.batch << "; "
+                            << count << " parameters (" << count * 4 / 1e6 << " MB) all-reduced per step\n";
+    }
     progress << "train: config " << config.name << " (" << config.width << "x" << config.height << " input, "
              << config.planes << " planes, " << config.levels << " x " << config.resolution << "^3), "
              << trainDirs.size() << " training scenes, " << validationDirs.size() << " held out ("
@@ -366,71 +406,91 @@ void train(const TrainOptions& o, std::ostream& progress) {
         setLearningRate(*s.optimizer, lr);
         setLearningRate(*s.discriminatorOptimizer, lr);
 
-        // Everything random in this iteration comes from (seed, iteration).
-        Random rng(mixSeed(o.seed, uint64_t(it)));
-        auto clock = std::chrono::steady_clock::now();
-        const std::string& dir = trainDirs[size_t(rng.integer(0, int(trainDirs.size()) - 1))];
-        const PreparedExample ex = prepareExample(dir, config, o, rng, device, direct);
-        const size_t e = size_t(rng.integer(0, int(ex.envmaps.size()) - 1));
-        window.secondsData += secondsSince(clock);
-
-        clock = std::chrono::steady_clock::now();
-        const PipelineOutput out = s.net->run(ex.inputs, stage >= 2);
-        const auto viewLoss = lossOf(renderMpiView(out.mpi, ex.inputs.depths, ex.inputs.ref, ex.target), ex.targetImage);
-        auto loss = viewLoss;
-        torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}), discLoss = torch::zeros({});
-        torch::Tensor voxLoss = torch::zeros({}), depthLoss = torch::zeros({});
-        if (ex.refDepth.defined()) {
-            depthLoss = mpiDepthLoss(out.mpi, ex.inputs.depths, ex.refDepth);
-            loss = loss + depthLoss;
-        }
-        if (stage >= 2) {
-            // Every envmap of the example: the completion's forward and backward cost the same
-            // for one or all, and each one is a room seen from another point. The adversarial
-            // stage uses the one drawn for this iteration.
-            torch::Tensor env;
-            for (size_t k = 0; k < ex.envmaps.size(); ++k) {
-                const auto rendered = renderEnvmapTorch(out.cubes, ex.inputs.layout, ex.envmapPositions[k],
-                                                        config.trainEnvWidth, config.trainEnvHeight, config.samplesPerLevel);
-                envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) + hdrImageLoss(rendered, ex.envmaps[k]);
-                if (k == e) env = rendered;
-            }
-            const auto& gt = ex.envmaps[e];
-            loss = loss + envLoss;
-            if (!ex.oracle.empty()) {
-                voxLoss = voxelLoss(out.cubes, ex.oracle);
-                loss = loss + voxLoss;
-            }
-            if (!direct) loss = loss + kSparsityWeight * sparsityLoss(out.cubes);
-            if (stage >= 3) {
-                // Discriminator step on real vs (detached) predicted envmaps, then the generator term.
-                s.discriminatorOptimizer->zero_grad();
-                discLoss = discriminatorHingeLoss(s.discriminator(srgbEncodeTensor(gt)),
-                                                  s.discriminator(srgbEncodeTensor(env.detach())));
-                discLoss.backward();
-                zeroNonFiniteGradients(s.discriminator->parameters());
-                s.discriminatorOptimizer->step();
-                advLoss = generatorHingeLoss(s.discriminator(srgbEncodeTensor(env)));
-                loss = loss + kAdversarialWeight * advLoss;
-            }
-        }
-        window.secondsForward += secondsSince(clock);
-        clock = std::chrono::steady_clock::now();
+        // Everything random in this iteration comes from (seed, iteration, example of the batch).
+        const int perRank = o.batch / world;
+        const double commBefore = comm ? comm->communicationSeconds() : 0;
+        double sums[7] = {0, 0, 0, 0, 0, 0, 0};  // total, view, envmap, adversarial, discriminator, voxel, depth
         s.optimizer->zero_grad();
-        loss.backward();
+        for (int j = rank * perRank; j < (rank + 1) * perRank; ++j) {
+            Random rng(j == 0 ? mixSeed(o.seed, uint64_t(it)) : mixSeed(mixSeed(o.seed, uint64_t(it)), uint64_t(j)));
+            auto clock = std::chrono::steady_clock::now();
+            const std::string& dir = trainDirs[size_t(rng.integer(0, int(trainDirs.size()) - 1))];
+            const PreparedExample ex = prepareExample(dir, config, o, rng, device, direct);
+            const size_t e = size_t(rng.integer(0, int(ex.envmaps.size()) - 1));
+            window.secondsData += secondsSince(clock);
+
+            clock = std::chrono::steady_clock::now();
+            const PipelineOutput out = s.net->run(ex.inputs, stage >= 2);
+            const auto viewLoss = lossOf(renderMpiView(out.mpi, ex.inputs.depths, ex.inputs.ref, ex.target), ex.targetImage);
+            auto loss = viewLoss;
+            torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}), discLoss = torch::zeros({});
+            torch::Tensor voxLoss = torch::zeros({}), depthLoss = torch::zeros({});
+            if (ex.refDepth.defined()) {
+                depthLoss = mpiDepthLoss(out.mpi, ex.inputs.depths, ex.refDepth);
+                loss = loss + depthLoss;
+            }
+            if (stage >= 2) {
+                // Every envmap of the example: the completion's forward and backward cost the same
+                // for one or all, and each one is a room seen from another point. The adversarial
+                // stage uses the one drawn for this iteration.
+                torch::Tensor env;
+                for (size_t k = 0; k < ex.envmaps.size(); ++k) {
+                    const auto rendered = renderEnvmapTorch(out.cubes, ex.inputs.layout, ex.envmapPositions[k],
+                                                            config.trainEnvWidth, config.trainEnvHeight, config.samplesPerLevel);
+                    envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) + hdrImageLoss(rendered, ex.envmaps[k]);
+                    if (k == e) env = rendered;
+                }
+                const auto& gt = ex.envmaps[e];
+                loss = loss + envLoss;
+                if (!ex.oracle.empty()) {
+                    voxLoss = voxelLoss(out.cubes, ex.oracle);
+                    loss = loss + voxLoss;
+                }
+                if (!direct) loss = loss + kSparsityWeight * sparsityLoss(out.cubes);
+                if (stage >= 3) {
+                    // Discriminator step on real vs (detached) predicted envmaps, then the generator
+                    // term. Data-parallel: one step per example of the rank's slice, on the mean of
+                    // the ranks' gradients.
+                    s.discriminatorOptimizer->zero_grad();
+                    discLoss = discriminatorHingeLoss(s.discriminator(srgbEncodeTensor(gt)),
+                                                      s.discriminator(srgbEncodeTensor(env.detach())));
+                    (world > 1 ? discLoss / world : discLoss).backward();
+                    zeroNonFiniteGradients(s.discriminator->parameters());
+                    if (comm) comm->allReduceGradients(s.discriminator->parameters(), "the discriminator's all-reduce");
+                    s.discriminatorOptimizer->step();
+                    advLoss = generatorHingeLoss(s.discriminator(srgbEncodeTensor(env)));
+                    loss = loss + kAdversarialWeight * advLoss;
+                }
+            }
+            window.secondsForward += secondsSince(clock);
+            clock = std::chrono::steady_clock::now();
+            (o.batch > 1 ? loss / o.batch : loss).backward();
+            window.secondsBackward += secondsSince(clock);
+            const torch::Tensor* terms[7] = {&loss, &viewLoss, &envLoss, &advLoss, &discLoss, &voxLoss, &depthLoss};
+            for (int t = 0; t < 7; ++t) sums[t] += terms[t]->item<double>() / o.batch;
+        }
+        auto clock = std::chrono::steady_clock::now();
         zeroNonFiniteGradients(s.net->parameters());
+        if (comm) {
+            comm->allReduceGradients(s.net->parameters(), "the gradients' all-reduce");
+            std::vector<torch::Tensor> losses = {
+                torch::tensor(std::vector<double>(sums, sums + 7), torch::kFloat64).to(device)};
+            comm->allReduceSum(losses, "the losses' all-reduce");
+            for (int t = 0; t < 7; ++t) sums[t] = losses[0][t].item<double>();
+            window.secondsAllReduce += comm->communicationSeconds() - commBefore;
+        }
         torch::nn::utils::clip_grad_norm_(s.net->parameters(), kGradientClipNorm);
         s.optimizer->step();
         s.discriminator->zero_grad();  // the generator term left gradients in the discriminator
         window.secondsBackward += secondsSince(clock);
 
-        window.total += loss.item<double>();
-        window.view += viewLoss.item<double>();
-        window.envmap += envLoss.item<double>();
-        window.adversarial += advLoss.item<double>();
-        window.discriminator += discLoss.item<double>();
-        window.voxel += voxLoss.item<double>();
-        window.depth += depthLoss.item<double>();
+        window.total += sums[0];
+        window.view += sums[1];
+        window.envmap += sums[2];
+        window.adversarial += sums[3];
+        window.discriminator += sums[4];
+        window.voxel += sums[5];
+        window.depth += sums[6];
         ++windowCount;
 
         const int done = it + 1;
@@ -451,9 +511,10 @@ void train(const TrainOptions& o, std::ostream& progress) {
             row.secondsData = window.secondsData / windowCount;
             row.secondsForward = window.secondsForward / windowCount;
             row.secondsBackward = window.secondsBackward / windowCount;
+            row.secondsAllReduce = window.secondsAllReduce / windowCount;
             row.learningRate = lr;
             row.itPerSecond = windowCount / std::chrono::duration<double>(now - windowStart).count();
-            if (validateNow) std::tie(row.valPsnr, row.valAngular) = validate(s.net, validationScenes, device);
+            if (validateNow && root) std::tie(row.valPsnr, row.valAngular) = validate(s.net, validationScenes, device);
             const double elapsed = std::chrono::duration<double>(now - runStart).count();
             const double eta = elapsed / std::max(1, done - firstIteration) * (o.iterations - done);
             progress << "train: it " << done << "/" << o.iterations << "  stage " << stage << "  loss " << std::fixed
@@ -461,7 +522,9 @@ void train(const TrainOptions& o, std::ostream& progress) {
             if (direct) progress << ", voxel " << row.voxel << ", depth " << row.depth;
             else progress << ", adv " << row.adversarial;
             progress << ")  " << std::setprecision(2) << row.itPerSecond << " it/s (data " << row.secondsData
-                     << " s, forward " << row.secondsForward << " s, backward " << row.secondsBackward << " s)  ETA "
+                     << " s, forward " << row.secondsForward << " s, backward " << row.secondsBackward << " s";
+            if (comm) progress << ", all-reduce " << row.secondsAllReduce << " s";
+            progress << ")  ETA "
                      << formatDuration(eta);
             if (validateNow) progress << "  val PSNR " << row.valPsnr << " dB, angular " << row.valAngular << " deg";
             progress << std::defaultfloat << std::endl;
@@ -469,11 +532,11 @@ void train(const TrainOptions& o, std::ostream& progress) {
             window = LogRow{};
             windowCount = 0;
             windowStart = std::chrono::steady_clock::now();
-            writeLog(o, s.log);  // every progress line, so a resumed run keeps whole curves
+            if (root) writeLog(o, s.log);  // every progress line, so a resumed run keeps whole curves
         }
         if (done % o.checkpointEvery == 0 || done == o.iterations || done == sittingEnd) {
             s.iteration = done;
-            saveCheckpoint(o, s);
+            if (root) saveCheckpoint(o, s);
             s.iteration = it;
         }
     }
@@ -483,6 +546,7 @@ void train(const TrainOptions& o, std::ostream& progress) {
         return;
     }
     s.iteration = o.iterations;
+    if (!root) return;
     saveModel(s.net, o.out, o.halfModel);
     writeLog(o, s.log);
     progress << "train: wrote " << o.out << " (log " << o.out << ".csv, curves " << o.out << ".png)\n";

@@ -10,13 +10,14 @@
 //     stage 2 (to 90%): the envmap losses added (and a small sparsity prior on the cubes);
 //     stage 3 (last 10%): the PatchGAN adversarial loss added (weight 0.1).
 // Image losses: the paper's VGG-19 perceptual loss with --vgg FILE, else the substitute of
-// losses.h. Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1;
+// losses.h. Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1 (or --batch);
 // non-finite gradients zeroed; gradients clipped to a global norm of 5. Each iteration draws
 // its example and augmentation (net/augment.h) from (seed, iteration) alone, so a resumed
 // run repeats exactly what an uninterrupted one would have done.
 #pragma once
 
 #include "net/config.h"
+#include "net/distributed.h"
 
 #include <iosfwd>
 #include <optional>
@@ -48,6 +49,15 @@ struct TrainOptions {
     bool resume = true;        // continue from OUT.checkpoint when it exists
     std::string vggWeights;    // VGG-19 weights (net/vgg_loss.h): the paper's perceptual loss
                                // instead of the substitute
+    // Examples per iteration, over all ranks; each loss is divided by it, so the gradient is
+    // the batch's mean. Example j of iteration i draws from (seed, i, j), example 0 from
+    // (seed, i) alone, as with batch 1.
+    int batch = 1;
+    // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
+    // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
+    // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank
+    // resumes from the same checkpoint (a shared file system).
+    DistributedOptions distributed;
 
     void validate() const;     // throws InputError
     std::string checkpointPath() const { return checkpoint.empty() ? out + ".checkpoint" : checkpoint; }

@@ -12,6 +12,7 @@ packages=(
   libtinyobjloader-dev            # OBJ meshes of inserted objects
   libexif-dev                     # EXIF focal lengths of real photos (lighthouse cameras --exif)
   libtorch-dev                    # the prediction network (net/), CPU build
+  libgloo-dev                     # headers of Gloo, which libtorch's c10d uses for data-parallel training (net/distributed.cpp)
   libopenblas0-pthread            # fast BLAS for libtorch (the reference BLAS is ~50x slower)
   python3-openvdb python3-numpy   # interop tests: files read and written by python3-openvdb
   blender                         # DCC round trip: Cycles renders of `lighthouse export` (tests/python/dcc_blender_cycles.py)

@@ -17,6 +17,9 @@
 #   --train-tasks N      data-parallel ranks for train (srun; default 1)
 #   --eval-args "..."    more options for eval (e.g. --no-oracle)
 #   --no-eval            predict only
+#   --threads N          threads of every predict and eval task (default 0: all the node's
+#                        cores); shards reproduce a single run byte for byte only at the same
+#                        count, as libtorch's reductions depend on it
 #   --sbatch-args "..."  options for every sbatch (--partition, --account, --time ...)
 #
 # Everything lands in OUT: train/ and test/ (data sets), model.pt, predictions/ (NAME.vdb and
@@ -30,8 +33,8 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 exe="$here/../../build/cli/lighthouse"
 shards=4 train_count=1000 test_count=40 synth_args="" model="" train_args="" train_tasks=1
-eval_args="" eval=1 sbatch_args=""
-usage() { sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+eval_args="" eval=1 sbatch_args="" threads=0
+usage() { sed -n '2,31p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case $1 in
         --bin) exe=$2; shift 2 ;;
@@ -45,13 +48,14 @@ while [ $# -gt 0 ]; do
         --eval-args) eval_args=$2; shift 2 ;;
         --no-eval) eval=0; shift ;;
         --sbatch-args) sbatch_args=$2; shift 2 ;;
+        --threads) threads=$2; shift 2 ;;
         -h | --help) usage ;;
         -*) echo "pipeline.sh: unknown option '$1'" >&2; usage ;;
         *) break ;;
     esac
 done
 [ $# -eq 1 ] || usage
-for v in "$shards" "$train_count" "$test_count" "$train_tasks"; do
+for v in "$shards" "$train_count" "$test_count" "$train_tasks" "$threads"; do
     [[ $v =~ ^[0-9]+$ ]] || { echo "pipeline.sh: '$v' is not a count" >&2; exit 2; }
 done
 [ "$shards" -ge 1 ] && [ "$test_count" -ge 1 ] && [ "$train_tasks" -ge 1 ] ||
@@ -106,12 +110,12 @@ fi
 result_jobs=()
 result_dirs=("$out/predictions")
 result_jobs+=("$(submit predict --dependency=afterok:$after $array "$here/shard_task.sh" "$shards" \
-    "$out/predictions" "$exe" predict --examples "$out/test" --model "$model" -o "$out/predictions")")
+    "$out/predictions" "$exe" --threads "$threads" predict --examples "$out/test" --model "$model" -o "$out/predictions")")
 echo "predict: job ${result_jobs[-1]} ($shards tasks)"
 if [ "$eval" = 1 ]; then
     # shellcheck disable=SC2086
     result_jobs+=("$(submit eval --dependency=afterok:$after $array "$here/shard_task.sh" "$shards" \
-        "$out/eval" "$exe" eval --data "$out/test" --model "$model" $eval_args -o "$out/eval")")
+        "$out/eval" "$exe" --threads "$threads" eval --data "$out/test" --model "$model" $eval_args -o "$out/eval")")
     echo "eval: job ${result_jobs[-1]} ($shards tasks)"
     result_dirs+=("$out/eval")
 fi
