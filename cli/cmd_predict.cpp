@@ -89,6 +89,15 @@ std::vector<BatchItem> batchItems(const PredictOptions& o) {
     return items;
 }
 
+net::PredictorOptions predictorOptions(const PredictOptions& o, int threads) {
+    net::PredictorOptions po;
+    po.model = o.model;
+    po.device = o.device;
+    po.threads = threads;
+    po.pruneAlpha = o.pruneAlpha;
+    return po;
+}
+
 void runPredictBatch(const PredictOptions& o, int threads) {
     if (!o.pairs.empty() && !o.examples.empty()) throw InputError("give --pairs or --examples, not both");
     if (!o.ref.empty() || !o.src.empty() || !o.cameras.empty())
@@ -99,12 +108,7 @@ void runPredictBatch(const PredictOptions& o, int threads) {
     const Shard shard = o.shard.empty() ? Shard{} : parseShard(o.shard);
     const std::vector<BatchItem> items = batchItems(o);
     fs::create_directories(o.output);
-    net::PredictorOptions po;
-    po.model = o.model;
-    po.device = o.device;
-    po.threads = threads;
-    po.pruneAlpha = o.pruneAlpha;
-    const net::Predictor predictor(po);
+    const net::Predictor predictor(predictorOptions(o, threads));
     std::size_t owned = 0, done = 0;
     for (std::size_t i = 0; i < items.size(); ++i) owned += shard.owns(i) ? 1 : 0;
     std::cerr << "predict: " << owned << " of " << items.size() << " pairs";
@@ -117,6 +121,7 @@ void runPredictBatch(const PredictOptions& o, int threads) {
         const BatchItem& item = items[i];
         net::StereoPair pair{readImage(item.ref), readImage(item.src), loadCamerasFile(item.cameras)};
         net::validateStereoPair(pair);
+    for (const auto& w : net::stereoPairWarnings(pair)) std::cerr << "warning: " << w << "\n";
         const net::Prediction p = predictor.predict(pair);
         const std::string output = item.name + ".vdb";
         saveVdb((fs::path(o.output) / output).string(), &p.volume, &p.mpi);
@@ -161,13 +166,9 @@ void runPredict(const PredictOptions& o, int threads) {
     parseSize(o.envmapSize, envOptions.width, envOptions.height);
     envOptions.validate();
     net::validateStereoPair(pair);
+    for (const auto& w : net::stereoPairWarnings(pair)) std::cerr << "warning: " << w << "\n";
 
-    net::PredictorOptions po;
-    po.model = o.model;
-    po.device = o.device;
-    po.threads = threads;
-    po.pruneAlpha = o.pruneAlpha;
-    const net::Predictor predictor(po);
+    const net::Predictor predictor(predictorOptions(o, threads));
     const net::NetConfig& config = predictor.config();
     std::cerr << "predict: model '" << (o.model.empty() ? net::defaultModelPath() : o.model) << "' (config "
               << config.name << ": " << config.width << "x" << config.height << " input, " << config.planes

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 namespace lh::net {
 
@@ -30,6 +31,26 @@ void validateStereoPair(const StereoPair& pair) {
         throw InputError("the two cameras are at the same place (zero baseline): a stereo pair needs two viewpoints");
     if (c.near && c.far && !(*c.near > 0 && *c.far > *c.near))
         throw InputError("cameras.json needs 0 < near < far");
+}
+
+std::vector<std::string> stereoPairWarnings(const StereoPair& pair) {
+    std::vector<std::string> warnings;
+    const CamerasFile& c = pair.cameras;
+    if (!c.src) return warnings;
+    const double baseline = (c.src->position - c.ref.position).length();
+    char text[200];
+    if (baseline > kImplausibleBaseline) {
+        std::snprintf(text, sizeof text,
+                      "the source camera is %.3g m from the reference; a stereo pair for this method is 5-15 cm "
+                      "apart (check cameras.json's units and that cam_to_world is camera-to-world)",
+                      baseline);
+        warnings.push_back(text);
+    } else if (c.near && baseline > *c.near) {
+        std::snprintf(text, sizeof text, "the baseline (%.3g m) exceeds the nearest depth (%.3g m): the views hardly overlap there",
+                      baseline, *c.near);
+        warnings.push_back(text);
+    }
+    return warnings;
 }
 
 struct Predictor::Impl {

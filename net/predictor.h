@@ -14,6 +14,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace lh::net {
 
@@ -26,6 +27,13 @@ struct StereoPair {
 // cameras, NaN or infinite pixels, a zero baseline (the pair cannot see depth), or a near/far
 // pair that is not 0 < near < far.
 void validateStereoPair(const StereoPair& pair);
+// The method sees depth through a narrow baseline (the paper's 5-15 cm pairs); a source camera
+// farther than this from the reference is most likely a wrong cameras.json (units, or a
+// world-to-camera matrix given as cam_to_world). Metres.
+constexpr double kImplausibleBaseline = 1.0;
+// Warnings (one line each, without "warning: ") for a pair that runs but is unlike what the
+// method expects: a baseline above kImplausibleBaseline, or above the near depth.
+std::vector<std::string> stereoPairWarnings(const StereoPair& pair);
 
 struct Prediction {
     LightingVolume volume;   // completed levels, the lighting volume

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
@@ -110,18 +111,38 @@ std::string stbReason() {
     return reason ? reason : "unknown decoder error";
 }
 
+// The format a file's first bytes announce: "PNG", "JPEG" or "" (neither).
+std::string announcedFormat(const std::string& path) {
+    unsigned char magic[4] = {0, 0, 0, 0};
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return "";
+    const std::size_t n = std::fread(magic, 1, sizeof magic, f);
+    std::fclose(f);
+    if (n == 4 && magic[0] == 0x89 && magic[1] == 'P' && magic[2] == 'N' && magic[3] == 'G') return "PNG";
+    if (n >= 3 && magic[0] == 0xFF && magic[1] == 0xD8 && magic[2] == 0xFF) return "JPEG";
+    return "";
+}
+
+// stb's terse reasons ("outofdata", "bad huffman code") as one line a user can act on: a file
+// that starts like a PNG or JPEG but does not decode is truncated or corrupt.
+[[noreturn]] void throwStbFailure(const std::string& path) {
+    const std::string reason = stbReason(), format = announcedFormat(path);
+    if (!format.empty())
+        throw FileError("'" + path + "': truncated or corrupt " + format + " (the decoder stopped at: " + reason + ")");
+    throw FileError("cannot read '" + path + "': not a PNG or JPEG file (" + reason + ")");
+}
+
 ImageRGB readStb(const std::string& path) {
     int width = 0, height = 0, fileChannels = 0;
     // Header only: the size is checked before stb allocates the pixels.
-    if (!stbi_info(path.c_str(), &width, &height, &fileChannels))
-        throw FileError("cannot read '" + path + "': " + stbReason());
+    if (!stbi_info(path.c_str(), &width, &height, &fileChannels)) throwStbFailure(path);
     checkReadableSize(width, height, path);
 
     const int wantedChannels = 3;  // stb converts grey and alpha images to RGB
     std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> bytes(
         stbi_load(path.c_str(), &width, &height, &fileChannels, wantedChannels),
         &stbi_image_free);
-    if (!bytes) throw FileError("cannot read '" + path + "': " + stbReason());
+    if (!bytes) throwStbFailure(path);
 
     static const std::array<float, 256> toLinear = [] {
         std::array<float, 256> table{};

@@ -9,6 +9,8 @@ file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/pair_zero_baseline.json "${LH_ZERO_BASELI
 string(JSON LH_NO_RANGE REMOVE "${LH_PAIR_CAMERAS}" near)
 string(JSON LH_NO_RANGE REMOVE "${LH_NO_RANGE}" far)
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/pair_no_range.json "${LH_NO_RANGE}")
+string(JSON LH_WIDE_BASELINE SET "${LH_PAIR_CAMERAS}" src cam_to_world 0 3 3.0)
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/pair_wide_baseline.json "${LH_WIDE_BASELINE}")
 set(LH_PAIR_ARGS --ref ${LH_PAIR}/ref.png --src ${LH_PAIR}/src.png)
 # libtorch reserves a lot of address space at start-up: allow it.
 set(LH_TORCH_MB 16384)
@@ -75,6 +77,11 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
   lighthouse_cli_ok(predict_estimated_range
     FILES pred_est.vdb
     ARGS predict ${LH_PAIR_ARGS} --cameras ${CMAKE_CURRENT_BINARY_DIR}/pair_no_range.json -o pred_est.vdb)
+  # A source camera 3 m away runs, with a warning that names the likely mistake.
+  add_test(NAME cli.warning.predict_implausible_baseline
+    COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" -o pred_wide.vdb 2>&1 | grep -q 'warning: the source camera is 3 m from the reference'"
+            ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/src.png ${CMAKE_CURRENT_BINARY_DIR}/pair_wide_baseline.json)
+  lighthouse_cli_properties(cli.warning.predict_implausible_baseline)
   lighthouse_cli_ok(predict_output_is_a_volume
     STDOUT "5 level[(]s[)]" "density_L4, color_L4, finest yes"
     ARGS info pred_ok.vdb)

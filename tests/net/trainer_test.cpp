@@ -6,6 +6,7 @@
 #include "net/trainer.h"
 #include "synth/dataset.h"
 #include "tests/net/net_test_scenes.h"
+#include "tests/net/tiny_training_set.h"
 
 #include "tests/support/temp_path.h"
 
@@ -24,24 +25,7 @@ class TrainerTest : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         dataDir() = test::uniqueTempPath("lighthouse_trainer_test_data");
-        synth::SynthOptions o;
-        o.count = 3;
-        o.out = dataDir();
-        o.width = 64;
-        o.height = 48;
-        o.envWidth = 16;
-        o.envHeight = 8;
-        o.envmapsPerExample = 1;
-        o.supersample = 1;
-        o.hdriDir = LIGHTHOUSE_HDRI_DIR;
-        o.bake.texelSize = 0.4;
-        o.bake.maxTexels = 2000;
-        o.bake.gatherRays = 16;
-        o.bake.lightSamples = 4;
-        o.bake.bounces = 1;
-        o.oracleLevels = test::tinyHdrConfig().levels;
-        o.oracleResolution = test::tinyHdrConfig().resolution;
-        synth::writeDataset(o);
+        test::writeTinyTrainingSet(dataDir());
     }
     static void TearDownTestSuite() { fs::remove_all(dataDir()); }
     static std::string& dataDir() {

@@ -196,6 +196,30 @@ TEST(ImageIo, ReadingMissingCorruptOrUnsupportedFilesThrowsFileError) {
     EXPECT_THROW(lh::readImage(dir.file("real.bmp")), lh::FileError);
 }
 
+TEST(ImageIo, TruncatedPngAndJpegAreNamedAsSuch) {
+    ScratchDir dir("truncated");
+    lh::writePng(sampleImage(), dir.file("whole.png"));
+    fs::copy_file(dir.file("whole.png"), dir.file("cut.png"));
+    fs::resize_file(dir.file("cut.png"), fs::file_size(dir.file("whole.png")) / 2);
+    // A JPEG that stops right after its start-of-image and a first marker.
+    writeBytes(dir.file("cut.jpg"), {char(0xFF), char(0xD8), char(0xFF), char(0xE0), 0, 16, 'J', 'F'});
+    writeBytes(dir.file("text.png"), {'h', 'e', 'l', 'l', 'o'});
+    const auto messageOf = [](const std::string& path) {
+        try {
+            lh::readImage(path);
+        } catch (const lh::FileError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no exception");
+    };
+    EXPECT_NE(messageOf(dir.file("cut.png")).find("cut.png': truncated or corrupt PNG"), std::string::npos)
+        << messageOf(dir.file("cut.png"));
+    EXPECT_NE(messageOf(dir.file("cut.jpg")).find("cut.jpg': truncated or corrupt JPEG"), std::string::npos)
+        << messageOf(dir.file("cut.jpg"));
+    EXPECT_NE(messageOf(dir.file("text.png")).find("not a PNG or JPEG file"), std::string::npos)
+        << messageOf(dir.file("text.png"));
+}
+
 TEST(ImageIo, ErrorMessagesAreOneLineAndNameTheFile) {
     ScratchDir dir("messages");
     writeBytes(dir.file("x.exr"), randomBytes(4096));
