@@ -82,4 +82,9 @@ std::string withExtension(const std::string& path, const std::string& extension)
     return std::filesystem::path(path).replace_extension(extension).string();
 }
 
+void warnOfHalfClamping(const VolumeSaveReport& saved, const std::string& hint) {
+    const std::string warning = halfClampWarning(saved);
+    if (!warning.empty()) std::cerr << "warning: " << warning << " (" << hint << ")\n";
+}
+
 }  // namespace lh::cli

@@ -4,6 +4,7 @@
 
 #include "core/camera.h"
 #include "vdb/lighting_volume.h"
+#include "vdb/volume_io.h"
 
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@ std::vector<Vec3d> readPointsFile(const std::string& path);
 void parseSize(const std::string& text, int& width, int& height);
 // Loads a volume, printing sanitising warnings to stderr.
 LightingVolume loadVolumeForCli(const std::string& path, bool strict);
+// After a save: one "warning:" line on stderr when values were clamped to fit half precision,
+// ending with `hint` in parentheses (the flag that asked for halves, or how to avoid them).
+void warnOfHalfClamping(const VolumeSaveReport& saved, const std::string& hint);
 // "out.exr", 3 -> "out_003.exr"
 std::string numberedPath(const std::string& path, int index);
 // Replaces the extension: ("a/b.exr", ".png") -> "a/b.png".

@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace lh::cli {
@@ -20,8 +21,7 @@ struct EditOptions {
     std::string input, output, crop;
     std::vector<std::string> eraseBoxes, addBoxes, addSpheres;
     float scaleDensity = 1, exposure = 1;
-    float clampDensity = 0, clampRadiance = 0;  // 0: not given (no clamp)
-    bool clampDensityGiven = false, clampRadianceGiven = false;
+    std::optional<float> clampDensity, clampRadiance;  // not given: no clamp
     bool half = false;
 };
 
@@ -45,23 +45,17 @@ WorldBox parseBox(const std::string& text, const std::string& what) {
     return {Vec3d(v[0], v[1], v[2]), Vec3d(v[3], v[4], v[5])};
 }
 
-bool overlaps(const WorldBox& a, const WorldBox& b) {
-    for (int i = 0; i < 3; ++i)
-        if (a.max[i] < b.min[i] || b.max[i] < a.min[i]) return false;
-    return true;
-}
-
-// An edit box that misses every level would change nothing: say so instead of "applied".
-void requireInsideVolume(const LightingVolume& volume, const WorldBox& box, const std::string& what,
-                         const std::string& text) {
-    for (const auto& level : volume.levels)
-        if (overlaps(level.worldBounds(), box)) return;
+// An edit that changed no voxel (its shape misses every voxel centre) is an error, not
+// "applied": `changed` is what the edit function returned.
+void requireChanged(std::size_t changed, const LightingVolume& volume, const std::string& what,
+                    const std::string& text) {
+    if (changed > 0) return;
     const WorldBox outer = volume.levels.front().worldBounds();
     char bounds[160];
     std::snprintf(bounds, sizeof bounds, "[%g, %g] x [%g, %g] x [%g, %g]", outer.min.x(), outer.max.x(),
                   outer.min.y(), outer.max.y(), outer.min.z(), outer.max.z());
     throw InputError(what + " " + text + " lies wholly outside the volume (its coarsest level covers " + bounds +
-                     "), so it would change nothing");
+                     ") or between its voxel centres, so it would change nothing");
 }
 
 // "GEOMETRY:R,G,B[:SIGMA]" -> the three parts.
@@ -79,31 +73,25 @@ void splitEmitter(const std::string& text, const std::string& what, std::string&
 void runEdit(const EditOptions& o) {
     if (fileExtension(o.output) != ".vdb")
         throw InputError("output '" + o.output + "' must end in .vdb (edit writes a lighting volume)");
-    if (o.clampDensityGiven && !(o.clampDensity > 0))
-        throw InputError("--clamp-density must be a positive density per scene unit, got " + std::to_string(o.clampDensity));
-    if (o.clampRadianceGiven && !(o.clampRadiance > 0))
-        throw InputError("--clamp-radiance must be a positive radiance, got " + std::to_string(o.clampRadiance));
+    if (o.clampDensity && !(*o.clampDensity > 0))
+        throw InputError("--clamp-density must be a positive density per scene unit, got " + std::to_string(*o.clampDensity));
+    if (o.clampRadiance && !(*o.clampRadiance > 0))
+        throw InputError("--clamp-radiance must be a positive radiance, got " + std::to_string(*o.clampRadiance));
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the input volume"}});
     LightingVolume volume = loadVolumeForCli(o.input, false);
     int edits = 0;
-    if (!o.crop.empty()) {
-        const WorldBox box = parseBox(o.crop, "--crop");
-        requireInsideVolume(volume, box, "--crop", o.crop);
-        cropToBox(volume, box), ++edits;
-    }
+    if (!o.crop.empty()) cropToBox(volume, parseBox(o.crop, "--crop")), ++edits;  // refuses a box outside the volume
     for (const auto& e : o.eraseBoxes) {
-        const WorldBox box = parseBox(e, "--erase-box");
-        requireInsideVolume(volume, box, "--erase-box", e);
-        eraseBox(volume, box), ++edits;
+        requireChanged(eraseBox(volume, parseBox(e, "--erase-box")), volume, "--erase-box", e);
+        ++edits;
     }
     for (const auto& e : o.addBoxes) {
         std::string geometry;
         openvdb::Vec3s radiance;
         float sigma;
         splitEmitter(e, "--add-box", geometry, radiance, sigma);
-        const WorldBox box = parseBox(geometry, "--add-box");
-        requireInsideVolume(volume, box, "--add-box", geometry);
-        addEmissiveBox(volume, box, radiance, sigma);
+        requireChanged(addEmissiveBox(volume, parseBox(geometry, "--add-box"), radiance, sigma), volume, "--add-box",
+                       geometry);
         ++edits;
     }
     for (const auto& e : o.addSpheres) {
@@ -112,21 +100,19 @@ void runEdit(const EditOptions& o) {
         float sigma;
         splitEmitter(e, "--add-sphere", geometry, radiance, sigma);
         const auto v = numbers(geometry, 4, "--add-sphere (X,Y,Z,RADIUS)");
-        requireInsideVolume(volume, {Vec3d(v[0] - v[3], v[1] - v[3], v[2] - v[3]), Vec3d(v[0] + v[3], v[1] + v[3], v[2] + v[3])},
-                            "--add-sphere", geometry);
-        addEmissiveSphere(volume, Vec3d(v[0], v[1], v[2]), v[3], radiance, sigma);
+        requireChanged(addEmissiveSphere(volume, Vec3d(v[0], v[1], v[2]), v[3], radiance, sigma), volume,
+                       "--add-sphere", geometry);
         ++edits;
     }
     if (o.scaleDensity != 1.f) scaleDensity(volume, o.scaleDensity), ++edits;
     if (o.exposure != 1.f) scaleExposure(volume, o.exposure), ++edits;
-    if (o.clampDensityGiven || o.clampRadianceGiven) {
-        clampValues(volume, o.clampDensity > 0 ? o.clampDensity : std::numeric_limits<float>::max(),
-                    o.clampRadiance > 0 ? o.clampRadiance : std::numeric_limits<float>::max());
+    if (o.clampDensity || o.clampRadiance) {
+        clampValues(volume, o.clampDensity.value_or(std::numeric_limits<float>::max()),
+                    o.clampRadiance.value_or(std::numeric_limits<float>::max()));
         ++edits;
     }
     if (edits == 0) throw InputError("no edit given: see 'lighthouse edit --help'");
-    const VolumeSaveReport saved = saveVolume(o.output, volume, VolumeSaveOptions{o.half});
-    if (!halfClampWarning(saved).empty()) std::cerr << "warning: " << halfClampWarning(saved) << " (--half)\n";
+    warnOfHalfClamping(saveVolume(o.output, volume, VolumeSaveOptions{o.half}), "--half");
     std::cerr << edits << " edit(s) applied -> " << o.output << "\n";
 }
 
@@ -145,10 +131,8 @@ void addEditCommand(CLI::App& app) {
     cmd->add_option("--add-sphere", o->addSpheres, "Emissive sphere X,Y,Z,RADIUS:R,G,B[:SIGMA] (repeatable)");
     cmd->add_option("--scale-density", o->scaleDensity, "Multiply every density by K");
     cmd->add_option("--exposure", o->exposure, "Multiply every radiance by K");
-    cmd->add_option("--clamp-density", o->clampDensity, "Clamp densities to at most D (> 0, per scene unit)")
-        ->each([o](const std::string&) { o->clampDensityGiven = true; });
-    cmd->add_option("--clamp-radiance", o->clampRadiance, "Clamp radiance components to at most R (> 0)")
-        ->each([o](const std::string&) { o->clampRadianceGiven = true; });
+    cmd->add_option("--clamp-density", o->clampDensity, "Clamp densities to at most D (> 0, per scene unit)");
+    cmd->add_option("--clamp-radiance", o->clampRadiance, "Clamp radiance components to at most R (> 0)");
     cmd->add_flag("--half", o->half, "Store values as 16-bit halves on disk (values above 65000 are clamped, with a warning)");
     cmd->callback([o] { runEdit(*o); });
 }

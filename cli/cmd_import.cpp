@@ -1,6 +1,7 @@
 // `lighthouse import EXPORT_DIR --from blender|houdini -o OUT.vdb`
 // Reads an export (possibly edited in Blender, Houdini or python3-openvdb) back into a
 // lighting volume: shells become levels, axes return to lighthouse's world frame.
+#include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "core/path_guard.h"
 #include "houdini_export/dcc_import.h"
@@ -23,8 +24,7 @@ void runImport(const ImportOptions& o) {
     std::vector<std::string> warnings;
     const LightingVolume volume = importFromDcc(o.input, dcc, &warnings);
     for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
-    const VolumeSaveReport saved = saveVolume(o.output, volume, VolumeSaveOptions{o.half});
-    if (!halfClampWarning(saved).empty()) std::cerr << "warning: " << halfClampWarning(saved) << " (--half)\n";
+    warnOfHalfClamping(saveVolume(o.output, volume, VolumeSaveOptions{o.half}), "--half");
     std::cout << o.input << " -> " << o.output << ": " << volume.levels.size() << " level(s), "
               << volume.activeVoxelCount() << " active voxel(s)\n";
 }

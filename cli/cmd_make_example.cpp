@@ -1,5 +1,6 @@
 // `lighthouse make-example -o example.vdb [--cameras cameras.json]`: the bundled example room,
 // built by code (vdb/example_volume.h), for demos and tests.
+#include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
@@ -34,8 +35,7 @@ void makeExample(const MakeExampleOptions& o) {
         if (!f) throw FileError("cannot write '" + o.cameras + "'");
     }
     const LightingVolume volume = makeExampleVolume(o.levels, o.resolution);
-    const VolumeSaveReport saved = saveVolume(o.output, volume, VolumeSaveOptions{o.half});
-    if (!halfClampWarning(saved).empty()) std::cerr << "warning: " << halfClampWarning(saved) << " (--half)\n";
+    warnOfHalfClamping(saveVolume(o.output, volume, VolumeSaveOptions{o.half}), "--half");
     std::cerr << "example room: " << volume.levels.size() << " levels of " << o.resolution
               << "^3, " << volume.activeVoxelCount() << " active voxels -> " << o.output << "\n";
     if (cameras) {

@@ -12,6 +12,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 namespace lh::cli {
 
@@ -21,8 +22,7 @@ struct SparsifyOptions {
     std::string input, output, depthRange;
     double targetDb = 0.1;  // PSNR loss allowed against ground truth, dB
     double basePsnr = 30;   // PSNR the volume reaches against ground truth, dB (higher: stricter)
-    double tau = -1;        // explicit bound; not given (tauGiven false): searched from targetDb
-    bool tauGiven = false;
+    std::optional<double> tau;  // explicit bound; not given: searched from targetDb
     bool floatPrecision = false;
     int points = 4;
 };
@@ -31,10 +31,10 @@ void runSparsify(const SparsifyOptions& o) {
     if (o.output.size() < 5 || o.output.substr(o.output.size() - 4) != ".vdb")
         throw InputError("output must be a .vdb file, got '" + o.output + "'");
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the input volume"}});
-    if (o.tauGiven && !(o.tau > 0))
+    if (o.tau && !(*o.tau > 0))
         throw InputError("--tau must be positive (a bound of 0 drops nothing; omit --tau to search for one), got " +
-                         std::to_string(o.tau));
-    if (o.tauGiven) SparsityOptions{o.tau}.validate();
+                         std::to_string(*o.tau));
+    if (o.tau) SparsityOptions{*o.tau}.validate();
     if (!(o.targetDb > 0 && o.targetDb <= 10)) throw InputError("--target-db must be in (0, 10] dB");
     if (!(o.basePsnr > 0 && o.basePsnr < 100)) throw InputError("--base-psnr must be in (0, 100) dB");
     if (o.points < 1 || o.points > 64) throw InputError("--points must be in [1, 64]");
@@ -44,8 +44,8 @@ void runSparsify(const SparsifyOptions& o) {
         options.maxLevels = levelsForDepthRange(range[0], range[1], 64);
     }
     const LightingVolume volume = loadVolumeForCli(o.input, false);
-    if (o.tauGiven) {
-        options.tau = o.tau;
+    if (o.tau) {
+        options.tau = *o.tau;
     } else {
         MemoryErrorOptions search;
         search.points = o.points;
@@ -58,8 +58,7 @@ void runSparsify(const SparsifyOptions& o) {
     }
     SparsityStats stats;
     const LightingVolume pruned = sparsify(volume, options, &stats);
-    const VolumeSaveReport saved = saveSparseVolume(o.output, pruned, !o.floatPrecision);
-    if (!halfClampWarning(saved).empty()) std::fprintf(stderr, "warning: %s (use --float to keep them)\n", halfClampWarning(saved).c_str());
+    warnOfHalfClamping(saveSparseVolume(o.output, pruned, !o.floatPrecision), "use --float to keep them");
     std::printf("tau %.3g (rays up to %.3g scene units, brightest colour %.3g: voxels of density <= %.3g per unit "
                 "dropped): %llu -> %llu active voxels, %.2f -> %.2f MB in memory, %d level(s) dropped, "
                 "%s on disk (%s, Blosc)\n",
@@ -79,8 +78,7 @@ void addSparsifyCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output .vdb")->required();
     cmd->add_option("--target-db", o->targetDb, "PSNR loss allowed against ground truth (dB)")->capture_default_str();
     cmd->add_option("--base-psnr", o->basePsnr, "PSNR the volume reaches against ground truth (dB)")->capture_default_str();
-    cmd->add_option("--tau", o->tau, "Explicit bound in (0, 1]: largest change of any envmap pixel, linear radiance with white = 1 (skips the search)")
-        ->each([o](const std::string&) { o->tauGiven = true; });
+    cmd->add_option("--tau", o->tau, "Explicit bound in (0, 1]: largest change of any envmap pixel, linear radiance with white = 1 (skips the search)");
     cmd->add_option("--levels-from-depth", o->depthRange, "NEAR,FAR: keep the levels this depth range needs");
     cmd->add_option("--points", o->points, "Random free-space points for the search (least dense points in fog)")->capture_default_str();
     cmd->add_flag("--float", o->floatPrecision, "Store 32-bit floats instead of halves");

@@ -35,16 +35,15 @@ bool isInside(const fs::path& path, const fs::path& dir) {
 
 void requireOutputIsNotAnInput(const std::string& output, const std::string& outputOption,
                                const std::vector<NamedInput>& inputs) {
+    std::error_code ec;
+    const bool outputIsDirectory = fs::is_directory(output, ec);
     for (const NamedInput& input : inputs) {
         if (input.path.empty()) continue;
-        std::error_code ec;
-        const bool inputIsDirectory = fs::is_directory(input.path, ec);
-        const bool outputIsDirectory = fs::is_directory(output, ec);
         std::string relation;
-        if (inputIsDirectory ? isInside(output, input.path) && !sameFile(output, input.path) : false)
-            relation = "is inside the directory given as ";
-        else if (sameFile(output, input.path))
+        if (sameFile(output, input.path))
             relation = "is the input given as ";
+        else if (fs::is_directory(input.path, ec) && isInside(output, input.path))
+            relation = "is inside the directory given as ";
         else if (outputIsDirectory && isInside(input.path, output))
             relation = "is a directory that holds the input given as ";  // replacing it would delete the input
         if (relation.empty()) continue;

@@ -33,14 +33,18 @@ void checkBox(const WorldBox& box) {
             throw InputError("a box needs finite corners with min < max on every axis");
 }
 
+// Returns how many voxels (over all levels) had their centre inside, i.e. were painted.
 template <typename Inside>
-void paint(LightingVolume& volume, const WorldBox& bounds, Inside inside, float sigma, const openvdb::Vec3s& radiance) {
+std::size_t paint(LightingVolume& volume, const WorldBox& bounds, Inside inside, float sigma,
+                  const openvdb::Vec3s& radiance) {
+    std::size_t painted = 0;
     for (VolumeLevel& level : volume.levels) {
         auto density = level.density->getAccessor();
         auto color = level.color->getAccessor();
         const openvdb::CoordBBox bbox = candidateVoxels(level, bounds);
         for (auto it = bbox.begin(); it; ++it) {
             if (!inside(level.transform().indexToWorld(*it))) continue;
+            ++painted;
             if (sigma > 0) {
                 density.setValueOn(*it, sigma);
                 color.setValueOn(*it, radiance);
@@ -50,6 +54,7 @@ void paint(LightingVolume& volume, const WorldBox& bounds, Inside inside, float 
             }
         }
     }
+    return painted;
 }
 
 void checkRadiance(const openvdb::Vec3s& radiance, float sigma) {
@@ -60,27 +65,29 @@ void checkRadiance(const openvdb::Vec3s& radiance, float sigma) {
 
 }  // namespace
 
-void addEmissiveBox(LightingVolume& volume, const WorldBox& box, const openvdb::Vec3s& radiance, float sigma) {
+std::size_t addEmissiveBox(LightingVolume& volume, const WorldBox& box, const openvdb::Vec3s& radiance,
+                           float sigma) {
     checkBox(box);
     checkRadiance(radiance, sigma);
-    paint(volume, box, [&](const Vec3d& p) { return box.contains(p); }, sigma, radiance);
+    return paint(volume, box, [&](const Vec3d& p) { return box.contains(p); }, sigma, radiance);
 }
 
-void addEmissiveSphere(LightingVolume& volume, const Vec3d& centre, double radius,
-                       const openvdb::Vec3s& radiance, float sigma) {
+std::size_t addEmissiveSphere(LightingVolume& volume, const Vec3d& centre, double radius,
+                              const openvdb::Vec3s& radiance, float sigma) {
     if (!(radius > 0) || !std::isfinite(radius)) throw InputError("sphere radius must be positive");
     checkRadiance(radiance, sigma);
     const WorldBox bounds{centre - Vec3d(radius), centre + Vec3d(radius)};
-    paint(volume, bounds, [&](const Vec3d& p) { return (p - centre).length() <= radius; }, sigma, radiance);
+    return paint(volume, bounds, [&](const Vec3d& p) { return (p - centre).length() <= radius; }, sigma, radiance);
 }
 
-void eraseBox(LightingVolume& volume, const WorldBox& box) {
+std::size_t eraseBox(LightingVolume& volume, const WorldBox& box) {
     checkBox(box);
-    paint(volume, box, [&](const Vec3d& p) { return box.contains(p); }, 0.f, openvdb::Vec3s(0.f));
+    const std::size_t erased = paint(volume, box, [&](const Vec3d& p) { return box.contains(p); }, 0.f, openvdb::Vec3s(0.f));
     for (VolumeLevel& level : volume.levels) {
         level.density->pruneGrid();
         level.color->pruneGrid();
     }
+    return erased;
 }
 
 void cropToBox(LightingVolume& volume, const WorldBox& box) {

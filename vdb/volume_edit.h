@@ -5,14 +5,18 @@
 
 #include "vdb/lighting_volume.h"
 
+#include <cstddef>
+
 namespace lh {
 
-// Voxels whose centre lies in the box (or sphere) become `sigma` and `radiance`.
-void addEmissiveBox(LightingVolume& volume, const WorldBox& box, const openvdb::Vec3s& radiance, float sigma);
-void addEmissiveSphere(LightingVolume& volume, const Vec3d& centre, double radius,
-                       const openvdb::Vec3s& radiance, float sigma);
-// Voxels whose centre lies in the box become empty.
-void eraseBox(LightingVolume& volume, const WorldBox& box);
+// Voxels whose centre lies in the box (or sphere) become `sigma` and `radiance`. Each returns
+// how many voxels it changed (over all levels): 0 when the shape misses every voxel centre.
+std::size_t addEmissiveBox(LightingVolume& volume, const WorldBox& box, const openvdb::Vec3s& radiance,
+                           float sigma);
+std::size_t addEmissiveSphere(LightingVolume& volume, const Vec3d& centre, double radius,
+                              const openvdb::Vec3s& radiance, float sigma);
+// Voxels whose centre lies in the box become empty; returns how many.
+std::size_t eraseBox(LightingVolume& volume, const WorldBox& box);
 // Everything outside the box becomes empty; each level's domain shrinks to the box.
 void cropToBox(LightingVolume& volume, const WorldBox& box);
 void scaleExposure(LightingVolume& volume, float factor);  // colour *= factor

@@ -6,6 +6,7 @@
 
 #include <openvdb/io/File.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -116,36 +117,41 @@ openvdb::CoordBBox storedDomain(const openvdb::GridBase& grid) {
 
 namespace {
 
-// Clamps a grid's values (voxels and tiles) to kHalfSafeMax per component; returns how many changed.
-std::size_t clampToHalf(openvdb::FloatGrid& grid) {
+// A stored value's largest component, and the value clamped to kHalfSafeMax per component.
+float largestComponent(float v) { return v; }
+float largestComponent(const openvdb::Vec3s& v) { return std::max({v.x(), v.y(), v.z()}); }
+float clampedToHalf(float v) { return std::min(v, kHalfSafeMax); }
+openvdb::Vec3s clampedToHalf(const openvdb::Vec3s& v) {
+    return openvdb::Vec3s(clampedToHalf(v.x()), clampedToHalf(v.y()), clampedToHalf(v.z()));
+}
+
+// Whether any value (voxel or tile) of the grid exceeds kHalfSafeMax: a read-only pass, so
+// that only grids that need clamping are copied.
+template <typename GridT>
+bool exceedsHalf(const GridT& grid) {
+    for (auto it = grid.cbeginValueAll(); it; ++it)
+        if (largestComponent(*it) > kHalfSafeMax) return true;
+    return false;
+}
+
+// Clamps every value (voxels and tiles) to kHalfSafeMax per component; returns how many changed.
+template <typename GridT>
+std::size_t clampToHalf(GridT& grid) {
     std::size_t n = 0;
     for (auto it = grid.beginValueAll(); it; ++it)
-        if (*it > kHalfSafeMax) it.setValue(kHalfSafeMax), ++n;
-    return n;
-}
-std::size_t clampToHalf(openvdb::Vec3SGrid& grid) {
-    std::size_t n = 0;
-    for (auto it = grid.beginValueAll(); it; ++it) {
-        const openvdb::Vec3s c = *it;
-        if (c.x() > kHalfSafeMax || c.y() > kHalfSafeMax || c.z() > kHalfSafeMax) {
-            it.setValue(openvdb::Vec3s(std::min(c.x(), kHalfSafeMax), std::min(c.y(), kHalfSafeMax),
-                                       std::min(c.z(), kHalfSafeMax)));
-            ++n;
-        }
-    }
+        if (largestComponent(*it) > kHalfSafeMax) it.setValue(clampedToHalf(*it)), ++n;
     return n;
 }
 
-// Whether any value of the grid exceeds kHalfSafeMax (cheap: no copy).
-bool exceedsHalf(const openvdb::FloatGrid& grid) {
-    for (auto it = grid.cbeginValueAll(); it; ++it)
-        if (*it > kHalfSafeMax) return true;
-    return false;
-}
-bool exceedsHalf(const openvdb::Vec3SGrid& grid) {
-    for (auto it = grid.cbeginValueAll(); it; ++it)
-        if ((*it).x() > kHalfSafeMax || (*it).y() > kHalfSafeMax || (*it).z() > kHalfSafeMax) return true;
-    return false;
+// The grid as it is written: a shallow copy (metadata and names are set on it, the tree is
+// shared), or with half precision and values beyond it, a deep copy clamped to kHalfSafeMax
+// (adding the count to `clamped`).
+template <typename GridPtr>
+GridPtr gridToSave(const GridPtr& grid, bool halfPrecision, std::size_t& clamped) {
+    if (!halfPrecision || !exceedsHalf(*grid)) return grid->copy();
+    GridPtr copy = grid->deepCopy();
+    clamped += clampToHalf(*copy);
+    return copy;
 }
 
 }  // namespace
@@ -173,18 +179,8 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
                                 openvdb::StringMetadata(cameraToJson(*volume->refCamera)));
         for (std::size_t k = 0; k < volume->levels.size(); ++k) {
             const VolumeLevel& level = volume->levels[k];
-            // Shallow copies: metadata and names are set on the copies, trees are shared
-            // (deep copies only where half precision needs values clamped).
-            openvdb::FloatGrid::Ptr density = level.density->copy();
-            openvdb::Vec3SGrid::Ptr color = level.color->copy();
-            if (options.halfPrecision && exceedsHalf(*density)) {
-                density = level.density->deepCopy();
-                report.valuesClampedToHalf += clampToHalf(*density);
-            }
-            if (options.halfPrecision && exceedsHalf(*color)) {
-                color = level.color->deepCopy();
-                report.valuesClampedToHalf += clampToHalf(*color);
-            }
+            const auto density = gridToSave(level.density, options.halfPrecision, report.valuesClampedToHalf);
+            const auto color = gridToSave(level.color, options.halfPrecision, report.valuesClampedToHalf);
             for (openvdb::GridBase::Ptr g : {openvdb::GridBase::Ptr(density), openvdb::GridBase::Ptr(color)}) {
                 g->setName(g == density ? densityGridName(int(k)) : colorGridName(int(k)));
                 g->insertMeta("level", openvdb::Int32Metadata(int(k)));

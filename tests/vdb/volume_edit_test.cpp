@@ -52,6 +52,21 @@ TEST(VolumeEdit, AddedSphereIsRoundAndInEveryLevel) {
     EXPECT_GT(v.levels[1].density->activeVoxelCount(), 0u);
 }
 
+// Each edit says how many voxels it changed, so that an edit that misses every voxel centre
+// (outside the volume, or between centres) can be refused instead of reported as applied.
+TEST(VolumeEdit, EditsCountTheVoxelsTheyChange) {
+    LightingVolume v = emptyVolume();
+    const WorldBox outside{Vec3d(100), Vec3d(101)};
+    EXPECT_EQ(addEmissiveBox(v, outside, openvdb::Vec3s(1), 10.f), 0u);
+    EXPECT_EQ(eraseBox(v, outside), 0u);
+    EXPECT_EQ(addEmissiveSphere(v, Vec3d(100), 0.5, openvdb::Vec3s(1), 10.f), 0u);
+    const std::size_t added = addEmissiveBox(v, {Vec3d(2, -0.5, -0.5), Vec3d(3, 0.5, 0.5)}, openvdb::Vec3s(4, 0, 0), 100.f);
+    EXPECT_GT(added, 0u);
+    EXPECT_EQ(added, std::size_t(v.activeVoxelCount()));  // the volume was empty: every painted voxel is new
+    EXPECT_EQ(eraseBox(v, {Vec3d(2, -0.5, -0.5), Vec3d(3, 0.5, 0.5)}), added);
+    EXPECT_EQ(v.activeVoxelCount(), 0u);
+}
+
 TEST(VolumeEdit, ErasedBoxIsEmptyAndTheRestUntouched) {
     LightingVolume v = uniformVolume(2.f, openvdb::Vec3s(1.f));
     eraseBox(v, {Vec3d(-0.5, -0.5, 0), Vec3d(0.5, 0.5, 10)});
