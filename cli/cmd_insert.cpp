@@ -55,6 +55,17 @@ std::vector<InsertedObject> buildObjects(const InsertCommandOptions& o) {
     return objects;
 }
 
+// One warning per inserted object that the photo will not show, naming it and saying why.
+void warnOfHiddenObjects(const InsertCommandOptions& o, const std::vector<InsertedObject>& objects,
+                         const PinholeCamera& camera, const std::vector<ObjectVisibility>& visibility) {
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        const std::string why = hiddenReason(objects[i], camera, visibility[i]);
+        if (!why.empty())
+            std::cerr << "warning: object " << i + 1 << " (" << o.objects[i] << " at " << o.at[i]
+                      << ") is not visible in the image: " << why << "\n";
+    }
+}
+
 void writeOutput(const ImageRGB& image, const std::string& path, const InsertCommandOptions& o) {
     writeImage(image, path, o.exposure);
     if (o.alsoPng && fileExtension(path) == ".exr") writePng(image, withExtension(path, ".png"), o.exposure);
@@ -89,7 +100,9 @@ void runInsert(const InsertCommandOptions& o) {
 
     if (o.path.empty()) {
         const auto start = std::chrono::steady_clock::now();
-        const ImageRGB result = insertObjects(volume, photo, camera, objects, options);
+        std::vector<ObjectVisibility> visibility;
+        const ImageRGB result = insertObjects(volume, photo, camera, objects, options, &visibility);
+        warnOfHiddenObjects(o, objects, camera, visibility);
         writeOutput(result, o.output, o);
         std::cerr << objects.size() << " object(s) inserted in "
                   << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()

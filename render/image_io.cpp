@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "render/image_orientation.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -151,7 +152,7 @@ ImageRGB readStb(const std::string& path) {
     }();
     ImageRGB image(width, height);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = toLinear[bytes.get()[i]];
-    return image;
+    return applyOrientation(image, exifOrientation(path));  // photos are used upright
 }
 
 }  // namespace

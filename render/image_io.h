@@ -29,7 +29,8 @@ void writePng(const ImageRGB& image, const std::string& path, float exposure = 1
 void writeImage(const ImageRGB& image, const std::string& path, float exposure = 1.0f);
 
 // Reads .exr (R, G, B of any pixel type, or Y replicated to grey) as linear values, and
-// .png / .jpg / .jpeg (8-bit sRGB) decoded to linear.
+// .png / .jpg / .jpeg (8-bit sRGB) decoded to linear and turned upright by the JPEG's EXIF
+// Orientation (render/image_orientation.h).
 ImageRGB readImage(const std::string& path);
 
 }  // namespace lh

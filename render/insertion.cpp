@@ -10,7 +10,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <sstream>
 
 namespace lh {
 
@@ -153,7 +155,8 @@ void InsertOptions::validate() const {
 }
 
 ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background, const PinholeCamera& camera,
-                       const std::vector<InsertedObject>& objects, const InsertOptions& options) {
+                       const std::vector<InsertedObject>& objects, const InsertOptions& options,
+                       std::vector<ObjectVisibility>* visibility) {
     options.validate();
     camera.validate("insertion camera");
     if (background.width != camera.width || background.height != camera.height)
@@ -162,6 +165,7 @@ ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background, c
     if (objects.empty()) throw InputError("nothing to insert: give at least one object");
     const Inserter inserter(volume, objects, options);
     ImageRGB out(camera.width, camera.height);
+    std::vector<std::atomic<long>> raysHit(objects.size()), raysVisible(objects.size());
     const int n = options.pixelSamples;
 
     // Shadows are smooth: the surface light is computed on every other pixel and row (at the
@@ -228,7 +232,9 @@ ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background, c
                 for (int s = 0; s < n * n; ++s) {
                     const Vec3d d = camera.pixelDirection(x + (s % n + 0.5) / n, y + (s / n + 0.5) / n);
                     const ObjectHit hit = inserter.tracer().intersect(camera.position, d, 0.0);
+                    if (hit.hit) raysHit[std::size_t(hit.object)].fetch_add(1, std::memory_order_relaxed);
                     if (hit.hit && hit.t < sceneSurface()) {
+                        raysVisible[std::size_t(hit.object)].fetch_add(1, std::memory_order_relaxed);
                         sum += inserter.shade(hit, d, 1, rng);
                         continue;
                     }
@@ -239,7 +245,44 @@ ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background, c
                 for (int c = 0; c < 3; ++c) px[c] = float(sum[c]);
             }
     });
+    if (visibility) {
+        visibility->assign(objects.size(), {});
+        for (std::size_t i = 0; i < objects.size(); ++i)
+            (*visibility)[i] = {raysHit[i].load(), raysVisible[i].load()};
+    }
     return out;
+}
+
+std::string hiddenReason(const InsertedObject& object, const PinholeCamera& camera,
+                         const ObjectVisibility& visibility) {
+    if (visibility.raysVisible > 0) return "";
+    const Vec3d centre = camera.worldToCamera(object.centre);  // camera frame, +z forward
+    std::ostringstream why;
+    why.precision(3);
+    if (visibility.raysHit > 0) {
+        why << "it is behind the scene's surface: along all " << visibility.raysHit
+            << " of its camera rays the photo's scene is nearer (the volume's transmittance falls "
+               "below 1/2 first)";
+        return why.str();
+    }
+    bool inFront = false;
+    for (const Vec3d& v : object.mesh.positions) inFront |= camera.worldToCamera(v).z() > 0;
+    if (!inFront) {
+        why << "it is behind the camera (its centre is at depth " << centre.z()
+            << " along the camera's +z axis)";
+        return why.str();
+    }
+    if (centre.z() > 0) {
+        const Vec3d pixel = camera.cameraToPixel(centre);
+        const double margin = object.radius * camera.fx / centre.z();  // its radius, pixels
+        if (pixel.x() + margin < 0 || pixel.x() - margin > camera.width || pixel.y() + margin < 0 ||
+            pixel.y() - margin > camera.height) {
+            why << "it is outside the image (its centre projects to pixel (" << pixel.x() << ", "
+                << pixel.y() << "); the image is " << camera.width << "x" << camera.height << ")";
+            return why.str();
+        }
+    }
+    return "it is hidden behind another inserted object, or too small to cover a pixel";
 }
 
 }  // namespace lh

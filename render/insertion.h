@@ -18,6 +18,7 @@
 #include "render/mesh.h"
 #include "render/ray_marcher.h"
 
+#include <string>
 #include <vector>
 
 namespace lh {
@@ -46,9 +47,24 @@ struct InsertOptions {
     void validate() const;  // throws InputError
 };
 
-// `background` is the linear photograph seen by `camera` (same size).
+// How much of one object the camera sees, counted over the primary rays (pixelSamples^2 per
+// pixel).
+struct ObjectVisibility {
+    long raysHit = 0;      // primary rays whose first inserted object is this one
+    long raysVisible = 0;  // of those, rays that meet it before the real scene's surface
+};
+
+// `background` is the linear photograph seen by `camera` (same size). With `visibility`, also
+// counts each object's rays (one entry per object, in order).
 ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background,
                        const PinholeCamera& camera, const std::vector<InsertedObject>& objects,
-                       const InsertOptions& options = {});
+                       const InsertOptions& options = {},
+                       std::vector<ObjectVisibility>* visibility = nullptr);
+
+// Why `object` does not appear in the image, in words: behind the camera, outside the image,
+// behind the real scene's surface, or behind another inserted object; "" when it is seen
+// (visibility.raysVisible > 0).
+std::string hiddenReason(const InsertedObject& object, const PinholeCamera& camera,
+                         const ObjectVisibility& visibility);
 
 }  // namespace lh

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Requests that work but may not do what was meant print a "warning:" line:
 #   - values beyond half precision with --half are clamped (the file holds no Inf);
-#   - an envmap asked for at a point outside every level of the volume.
+#   - an envmap asked for at a point outside every level of the volume;
+#   - an inserted object that the photo will not show (behind the camera, behind the scene).
 #   warnings_test.sh LIGHTHOUSE WORKDIR
 set -u
 [ $# -eq 2 ] || { echo "usage: $0 LIGHTHOUSE WORKDIR" >&2; exit 2; }
@@ -36,6 +37,23 @@ grep -q "^warning: point (0, 0, 500) lies outside every level" err.txt ||
     fail "render-envmap inside: $(cat err.txt)"
 grep -q "^warning:" err.txt && fail "a point inside warned: $(cat err.txt)"
 echo "ok envmap_outside_every_level_warns"
+
+# The example room's reference camera sits at the origin looking along +z into a room whose
+# walls lie within 10 m: a sphere at z = -2 is behind the camera, a cube at z = 30 behind the
+# far wall, a sphere at z = 2 in plain view (and not in front of the cube).
+"$lh" make-example --levels 2 --res 16 --cameras cams.json -o room_cam.vdb >/dev/null 2>&1 ||
+    fail "make-example --cameras"
+"$lh" render-view room_cam.vdb --cameras cams.json -o photo.png >/dev/null 2>&1 || fail "render-view"
+"$lh" insert --volume room_cam.vdb --image photo.png --cameras cams.json --samples 1 --no-shadows \
+    --object sphere --at -0.5,0,2 --object sphere --at 0,0,-2 --object cube --at 1,0.5,30 \
+    -o inserted.png </dev/null >out.txt 2>err.txt || fail "insert: $(cat err.txt)"
+grep -q "^warning: object 2 (sphere at 0,0,-2) is not visible in the image: it is behind the camera" err.txt ||
+    fail "no warning for the object behind the camera: $(cat err.txt)"
+grep -q "^warning: object 3 (cube at 1,0.5,30) is not visible in the image: it is behind the scene's surface" err.txt ||
+    fail "no warning for the object behind the wall: $(cat err.txt)"
+grep -q "^warning: object 1 " err.txt && fail "the visible object warned: $(cat err.txt)"
+[ -s inserted.png ] || fail "insert wrote no image"
+echo "ok hidden_inserted_objects_warn"
 
 [ $failures -eq 0 ] || { echo "$failures case(s) failed"; exit 1; }
 echo "all cases passed"

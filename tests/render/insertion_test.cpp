@@ -153,6 +153,39 @@ TEST(Insertion, ObjectBehindASceneSurfaceIsHidden) {
     EXPECT_GT(std::abs(front.at(32, 32)[0] - 0.25f), 0.05f);
 }
 
+// Each way an object can miss the picture is told apart: the reason names it.
+TEST(Insertion, AnObjectTheImageDoesNotShowIsReportedWithItsReason) {
+    const RenderVolume volume(test::volumeOf({test::makeLevel(
+        0.05, Vec3d(-3), openvdb::Coord(120),
+        test::boxField(Vec3d(-3, -3, 2.0), Vec3d(3, 3, 2.5), {80.f, openvdb::Vec3s(0.5f)}))}));
+    const PinholeCamera cam = camera(Vec3d(0.0));
+    const ImageRGB photo = constantImage(64, 0.25f);
+    const Material white = Material::parse("diffuse:1,1,1");
+    const InsertOptions o = exactOptions();
+    const auto reasonFor = [&](const Vec3d& at) {
+        const std::vector<InsertedObject> objects = {placeObject(builtinMesh("sphere"), white, at, 0.3)};
+        std::vector<ObjectVisibility> visibility;
+        insertObjects(volume, photo, cam, objects, o, &visibility);
+        EXPECT_EQ(visibility.size(), 1u);
+        return hiddenReason(objects[0], cam, visibility[0]);
+    };
+    EXPECT_EQ(reasonFor(Vec3d(0, 0, 1)), "");  // in front of the wall: seen
+    EXPECT_NE(reasonFor(Vec3d(0, 0, 4)).find("behind the scene's surface"), std::string::npos);
+    EXPECT_NE(reasonFor(Vec3d(0, 0, -1)).find("behind the camera"), std::string::npos);
+    EXPECT_NE(reasonFor(Vec3d(5, 0, 1)).find("outside the image"), std::string::npos);
+
+    // Two objects on one line of sight: the far one is hidden by the near one.
+    const std::vector<InsertedObject> pair = {placeObject(builtinMesh("sphere"), white, Vec3d(0, 0, 0.8), 0.3),
+                                              placeObject(builtinMesh("sphere"), white, Vec3d(0, 0, 1.6), 0.1)};
+    std::vector<ObjectVisibility> visibility;
+    insertObjects(volume, photo, cam, pair, o, &visibility);
+    ASSERT_EQ(visibility.size(), 2u);
+    EXPECT_GT(visibility[0].raysVisible, 0);
+    EXPECT_EQ(visibility[1].raysHit, 0);
+    EXPECT_EQ(hiddenReason(pair[0], cam, visibility[0]), "");
+    EXPECT_NE(hiddenReason(pair[1], cam, visibility[1]).find("another inserted object"), std::string::npos);
+}
+
 TEST(Insertion, MaterialsAndMeshesAreChecked) {
     EXPECT_EQ(Material::parse("glossy:0.3").kind, Material::Kind::Glossy);
     EXPECT_EQ(Material::parse("diffuse:0.1,0.2,0.3").albedo, Vec3d(0.1, 0.2, 0.3));
