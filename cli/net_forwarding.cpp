@@ -1,10 +1,11 @@
 #include "cli/net_commands.h"
 
+#include "core/sibling_executable.h"
+
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -32,19 +33,16 @@ const char* netCommandIn(int argc, char** argv) {
 }
 
 int runInNetBinary(char** argv, const char* command) {
-    std::error_code ec;
-    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    const std::filesystem::path net = self.parent_path() / "lighthouse-net";
-    if (ec || ::access(net.c_str(), X_OK) != 0) {
+    const SiblingExecutable net = findSiblingExecutable("lighthouse-net");
+    if (!net.found) {
         std::cerr << "lighthouse: error: '" << command
                   << "' needs the prediction network, which this build does not have (lighthouse-net "
                      "was not found beside "
-                  << (ec ? std::string("this executable") : self.string())
-                  << "; build with libtorch installed: see README)\n";
+                  << net.self << "; build with libtorch installed: see README)\n";
         return 1;
     }
-    ::execv(net.c_str(), argv);  // returns only on failure
-    std::cerr << "lighthouse: error: could not run " << net.string() << ": " << std::strerror(errno) << "\n";
+    ::execv(net.path.c_str(), argv);  // returns only on failure
+    std::cerr << "lighthouse: error: could not run " << net.path.string() << ": " << std::strerror(errno) << "\n";
     return 1;
 }
 
