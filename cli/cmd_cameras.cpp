@@ -139,8 +139,8 @@ void runCameras(const CamerasOptions& o) {
         const fs::path base = fs::path(o.output).replace_extension("");
         AtomicOutput refOut(base.string() + "_ref" + fileExtension(r.refImage));
         AtomicOutput srcOut(base.string() + "_src" + fileExtension(r.srcImage));
-        fs::copy_file(r.refImage, refOut.tempPath());
-        fs::copy_file(r.srcImage, srcOut.tempPath());
+        fs::copy_file(r.refImage, refOut.tempPath(), fs::copy_options::overwrite_existing);
+        fs::copy_file(r.srcImage, srcOut.tempPath(), fs::copy_options::overwrite_existing);
         writeJson(out, c);
         refOut.commit();
         srcOut.commit();

@@ -7,6 +7,9 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <system_error>
 #include <unistd.h>
 
@@ -33,6 +36,19 @@ AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPa
     const std::size_t fixed = 1 + tag.size() + ext.size();
     if (fixed + stem.size() > kMaxFileNameBytes) stem.resize(kMaxFileNameBytes > fixed ? kMaxFileNameBytes - fixed : 0);
     tempPath_ = (dir / ("." + stem + tag + ext)).string();
+    // Created now, so that an unwritable folder is reported as such rather than as whatever
+    // the image or VDB encoder says when it cannot open its file.
+    const int fd = ::open(tempPath_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        const int error = errno;
+        const std::string folder = dir.empty() ? std::string(".") : dir.string();
+        throw FileError("cannot write '" + finalPath_ + "': cannot create a file in the folder '" + folder +
+                        "': " + std::strerror(error) +
+                        (error == EACCES || error == EPERM || error == EROFS
+                             ? " (write permission is needed there; choose another output folder)"
+                             : ""));
+    }
+    ::close(fd);
 }
 
 AtomicOutput::~AtomicOutput() {
@@ -44,12 +60,15 @@ AtomicOutput::~AtomicOutput() {
 
 void AtomicOutput::commit() {
     std::error_code ec;
-    if (!fs::exists(tempPath_, ec))
-        throw FileError("writing '" + finalPath_ + "' produced no data");
+    // The temporary exists from the start: a writer that failed silently left it empty.
+    const auto bytes = fs::file_size(tempPath_, ec);
+    if (ec || bytes == 0) throw FileError("writing '" + finalPath_ + "' produced no data");
     fs::rename(tempPath_, finalPath_, ec);
     if (ec) throw FileError("cannot write '" + finalPath_ + "': " + ec.message());
     committed_ = true;
 }
+
+void requireWritableOutput(const std::string& path) { AtomicOutput probe(path); }
 
 void writeTextFile(const std::string& path, const std::string& text) {
     AtomicOutput out(path);

@@ -12,8 +12,9 @@ constexpr std::size_t kMaxFileNameBytes = 255;
 
 class AtomicOutput {
 public:
-    // Prepares a temporary path next to `finalPath` (same directory, so rename is atomic).
-    // Throws FileError if the directory does not exist.
+    // Creates an empty temporary file next to `finalPath` (same directory, so rename is
+    // atomic). Throws FileError if the directory does not exist or cannot be written, naming
+    // the reason (permission denied, read-only file system, ...) before any work is done.
     explicit AtomicOutput(std::string finalPath);
     ~AtomicOutput();  // removes the temporary file unless commit() succeeded
     AtomicOutput(const AtomicOutput&) = delete;
@@ -30,6 +31,10 @@ private:
     std::string tempPath_;
     bool committed_ = false;
 };
+
+// Throws FileError, with the reason, unless a file can be created in `path`'s folder: lets a
+// long command (predict, say) fail before its work rather than after it.
+void requireWritableOutput(const std::string& path);
 
 // Writes `text` plus a newline to `path` atomically. Throws FileError.
 void writeTextFile(const std::string& path, const std::string& text);

@@ -37,3 +37,10 @@ set_tests_properties(cli.no_lost_input PROPERTIES TIMEOUT 120 LABELS cli)
 add_test(NAME cli.warnings
   COMMAND bash ${LH_CLI_SCRIPTS}/warnings_test.sh ${LH_CLI_EXE} ${CMAKE_CURRENT_BINARY_DIR}/warnings)
 set_tests_properties(cli.warnings PROPERTIES TIMEOUT 120 LABELS cli)
+
+# A folder that cannot be written (/sys refuses new files, even to root) is named as such,
+# with the reason, not as the encoder's failure.
+lighthouse_cli_error(output_folder_not_writable
+  EXPECT "cannot create a file in the folder '/sys'" "write permission is needed"
+  ABSENT /sys/lh_env.png
+  ARGS render-envmap example.vdb --at 0,0,1 --size 16x8 -o /sys/lh_env.png)

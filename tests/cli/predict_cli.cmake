@@ -25,6 +25,12 @@ lighthouse_cli_error(predict_image_camera_mismatch
   ABSENT pred_bad2.vdb
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS predict ${LH_PAIR_ARGS} --cameras cameras_ok.json -o pred_bad2.vdb)
+# An unwritable output folder is found before the network runs (no "predict:" progress).
+lighthouse_cli_error(predict_output_folder_not_writable
+  EXPECT "^lighthouse: error: cannot write '/sys/lh_pred[.]vdb': cannot create a file in the folder '/sys'"
+  ABSENT /sys/lh_pred.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json -o /sys/lh_pred.vdb)
 lighthouse_cli_error(predict_missing_image
   EXPECT "no_such_ref[.]png"
   ABSENT pred_bad3.vdb

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 namespace lh {
 namespace {
@@ -44,6 +45,52 @@ TEST(AtomicOutput, MissingDirectoryIsAFileError) {
     EXPECT_THROW(AtomicOutput("/nonexistent_dir_lh/out.exr"), FileError);
     EXPECT_EQ(fileExtension("a/b.EXR"), ".exr");
     EXPECT_EQ(fileExtension("noext"), "");
+}
+
+// A folder the process may not write to: /sys for root (sysfs refuses new files even to
+// root), a read-only temporary folder for anyone else.
+std::string unwritableFolder() {
+    if (::geteuid() == 0) return fs::is_directory("/sys") ? "/sys" : "";
+    const fs::path dir = freshDir("read_only");
+    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+    return dir.string();
+}
+
+TEST(AtomicOutput, AnUnwritableFolderIsNamedWithTheReason) {
+    const std::string folder = unwritableFolder();
+    if (folder.empty()) GTEST_SKIP() << "no unwritable folder here";
+    const std::string path = folder + "/lh_atomic_probe.png";
+    for (int form = 0; form < 2; ++form) {
+        try {
+            if (form == 0)
+                AtomicOutput out(path);
+            else
+                requireWritableOutput(path);
+            FAIL() << "no error for " << path;
+        } catch (const FileError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("cannot create a file in the folder '" + folder + "'"), std::string::npos) << what;
+            EXPECT_TRUE(what.find("Permission denied") != std::string::npos ||
+                        what.find("Read-only file system") != std::string::npos)
+                << what;
+            EXPECT_NE(what.find("write permission is needed"), std::string::npos) << what;
+        }
+    }
+    EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(AtomicOutput, AWriterThatWroteNothingIsReported) {
+    const std::string path = (freshDir("empty") / "empty.txt").string();
+    {
+        AtomicOutput out(path);
+        EXPECT_TRUE(fs::exists(out.tempPath()));  // created at once, empty
+        EXPECT_THROW(out.commit(), FileError);
+    }
+    EXPECT_FALSE(fs::exists(path));
+    requireWritableOutput(path);  // a writable folder: no error, and nothing left behind
+    EXPECT_FALSE(fs::exists(path));
+    for (const auto& entry : fs::directory_iterator(fs::path(path).parent_path()))
+        EXPECT_EQ(entry.path().filename().string().find(".empty.tmp"), std::string::npos) << entry.path();
 }
 
 TEST(AtomicOutput, NamesNearTheFileNameLimitStillGetATemporary) {
