@@ -1,7 +1,8 @@
-// `lighthouse bench-envmap FILE.vdb [--points 8] [--repeats 3] [--out DIR]`: speed against error of our
+// `lighthouse bench-envmap FILE.vdb [--count 8] [--repeats 3] [-o DIR]`: speed against error of our
 // marcher, a fixed-step OpenVDB-sampler marcher and the paper's concentric spheres.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "core/errors.h"
 #include "render/speed_error.h"
 
@@ -15,14 +16,15 @@ namespace {
 struct BenchOptions {
     std::string file, out = "out/speed_error", size = "240x120";
     SpeedErrorOptions bench;
+    bool strict = false;
 };
 
 void runBench(BenchOptions& o) {
     parseSize(o.size, o.bench.width, o.bench.height);
     EnvmapOptions{o.bench.width, o.bench.height, MarchOptions{}}.validate();
-    if (o.bench.points < 1 || o.bench.points > 1000) throw InputError("--points must be in [1, 1000]");
+    if (o.bench.points < 1 || o.bench.points > 1000) throw InputError("--count must be in [1, 1000]");
     if (o.bench.repeats < 1 || o.bench.repeats > 100) throw InputError("--repeats must be in [1, 100]");
-    const LightingVolume volume = loadVolumeForCli(o.file, false);
+    const LightingVolume volume = loadVolumeForCli(o.file, o.strict);
     const auto rows = measureSpeedAgainstError(volume, o.bench, [](const std::string& s) { std::cerr << "bench: " << s << "\n"; });
     writeSpeedErrorReport(rows, o.out, o.bench.width, o.bench.height);
     std::ifstream table(o.out + "/speed_error.md");
@@ -37,7 +39,7 @@ void addBenchEnvmapCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "bench-envmap", "Measure envmap speed against error: ours, OpenVDB fixed-step, the paper's spheres");
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
-    cmd->add_option("--points", o->bench.points, "Random query points in empty space")->capture_default_str();
+    cmd->add_option("--count", o->bench.points, "Random query points in empty space")->capture_default_str();
     cmd->add_option("--size", o->size, "Envmap size WxH")->capture_default_str();
     cmd->add_option("--methods", o->bench.methods,
                     "Only these methods (reference-check, ours-steps, ours-cells, openvdb-fixed-step, "
@@ -49,7 +51,8 @@ void addBenchEnvmapCommand(CLI::App& app) {
                     "Timing rounds: each renders every setting at every point once; an envmap's time is its fastest "
                     "round (a busy machine only adds time)")
         ->capture_default_str();
-    cmd->add_option("--out", o->out, "Directory for speed_error.csv/.md/.svg")->capture_default_str();
+    cmd->add_option("-o,--output", o->out, "Directory for speed_error.csv/.md/.svg")->capture_default_str();
+    addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runBench(*o); });
 }
 

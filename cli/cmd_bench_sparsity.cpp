@@ -1,4 +1,4 @@
-// `lighthouse bench-sparsity FILE.vdb [--taus 1e-3,...] [--dataset DIR] [--out DIR]`:
+// `lighthouse bench-sparsity FILE.vdb [--taus 1e-3,...] [--dataset DIR] [-o DIR] [--half]`:
 // memory (active voxels, bytes in memory and on disk) against envmap error for several
 // sparsity bounds (vdb/sparsity.h), as memory_error.csv/.md/.svg, and where the bytes in
 // memory go (memory_breakdown.csv/.md). Any .vdb: oracle, predicted (dense fog: the query
@@ -7,6 +7,7 @@
 // synthetic example or data/demo_pair) it also reports the PSNR lost against ground truth.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "core/errors.h"
 #include "core/atomic_file.h"
 #include "render/render_volume.h"
@@ -27,7 +28,8 @@ namespace {
 struct BenchSparsityOptions {
     std::string file, out = "out/sparsity", taus = "1e-4,1e-3,1e-2,1e-1,0.3,1", size = "240x120";
     MemoryErrorOptions bench;
-    bool floatPrecision = false;
+    bool half = false;
+    bool strict = false;
 };
 
 std::vector<double> parseTaus(const std::string& text) {
@@ -107,9 +109,9 @@ void runBenchSparsity(BenchSparsityOptions& o) {
     parseSize(o.size, o.bench.width, o.bench.height);
     EnvmapOptions{o.bench.width, o.bench.height, MarchOptions{}}.validate();
     o.bench.taus = parseTaus(o.taus);
-    o.bench.halfPrecision = !o.floatPrecision;
-    if (o.bench.points < 1 || o.bench.points > 1000) throw InputError("--points must be in [1, 1000]");
-    const LightingVolume volume = loadVolumeForCli(o.file, false);
+    o.bench.halfPrecision = o.half;
+    if (o.bench.points < 1 || o.bench.points > 1000) throw InputError("--count must be in [1, 1000]");
+    const LightingVolume volume = loadVolumeForCli(o.file, o.strict);
     double dense = 0;  // bytes of the levels stored densely: sigma + RGB, 4 floats per voxel
     for (const auto& level : volume.levels) dense += double(level.domain.volume()) * 4 * sizeof(float);
     const auto rows = measureMemoryAgainstError(volume, o.bench, [](const std::string& s) { std::cerr << "bench-sparsity: " << s << "\n"; });
@@ -133,7 +135,7 @@ void addBenchSparsityCommand(CLI::App& app) {
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
     cmd->add_option("--taus", o->taus, "Comma-separated bounds: largest change of any envmap pixel, linear radiance (white 1)")
         ->capture_default_str();
-    cmd->add_option("--points", o->bench.points,
+    cmd->add_option("--count", o->bench.points,
                     "Random query points inside level 1's box where the medium is empty; a volume with no empty space "
                     "(predicted fog) gets the least dense of 64 x N random points there, where a user would put an "
                     "object")
@@ -143,8 +145,9 @@ void addBenchSparsityCommand(CLI::App& app) {
     cmd->add_option("--dataset", o->bench.datasetDir,
                     "Directory whose cameras.json lists ground-truth envmaps (a synthetic example, data/demo_pair): "
                     "adds PSNR against ground truth at their points");
-    cmd->add_option("--out", o->out, "Directory for memory_error.csv/.md/.svg")->capture_default_str();
-    cmd->add_flag("--float", o->floatPrecision, "Render the pruned volumes in float, not through half precision");
+    cmd->add_option("-o,--output", o->out, "Directory for memory_error.csv/.md/.svg")->capture_default_str();
+    addHalfFlag(cmd, o->half, "Render the pruned volumes through half precision, as a --half file reads back");
+    addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runBenchSparsity(*o); });
 }
 

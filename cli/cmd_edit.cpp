@@ -1,7 +1,8 @@
 // `lighthouse edit IN.vdb [--crop ...] [--erase-box ...] [--add-box ...] [--add-sphere ...]
-//  [--scale-density K] [--exposure K] [--clamp-density D] [--clamp-radiance R] -o OUT.vdb`
+//  [--scale-density K] [--scale-radiance K] [--clamp-density D] [--clamp-radiance R] -o OUT.vdb`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
@@ -20,9 +21,10 @@ namespace {
 struct EditOptions {
     std::string input, output, crop;
     std::vector<std::string> eraseBoxes, addBoxes, addSpheres;
-    float scaleDensity = 1, exposure = 1;
+    float scaleDensity = 1, scaleRadiance = 1;
     std::optional<float> clampDensity, clampRadiance;  // not given: no clamp
     bool half = false;
+    bool strict = false;
 };
 
 constexpr float kDefaultSigma = 100.f;  // per scene unit: opaque over a few centimetres
@@ -78,7 +80,7 @@ void runEdit(const EditOptions& o) {
     if (o.clampRadiance && !(*o.clampRadiance > 0))
         throw InputError("--clamp-radiance must be a positive radiance, got " + std::to_string(*o.clampRadiance));
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the input volume"}});
-    LightingVolume volume = loadVolumeForCli(o.input, false);
+    LightingVolume volume = loadVolumeForCli(o.input, o.strict);
     int edits = 0;
     if (!o.crop.empty()) cropToBox(volume, parseBox(o.crop, "--crop")), ++edits;  // refuses a box outside the volume
     for (const auto& e : o.eraseBoxes) {
@@ -105,7 +107,7 @@ void runEdit(const EditOptions& o) {
         ++edits;
     }
     if (o.scaleDensity != 1.f) scaleDensity(volume, o.scaleDensity), ++edits;
-    if (o.exposure != 1.f) scaleExposure(volume, o.exposure), ++edits;
+    if (o.scaleRadiance != 1.f) scaleExposure(volume, o.scaleRadiance), ++edits;
     if (o.clampDensity || o.clampRadiance) {
         clampValues(volume, o.clampDensity.value_or(std::numeric_limits<float>::max()),
                     o.clampRadiance.value_or(std::numeric_limits<float>::max()));
@@ -122,18 +124,21 @@ void addEditCommand(CLI::App& app) {
     auto o = std::make_shared<EditOptions>();
     CLI::App* cmd = app.add_subcommand(
         "edit", "Edit a lighting volume: add emissive boxes/spheres, erase, crop, scale, clamp (applied in that order: "
-                "crop, erase, add, density, exposure, clamp)");
+                "crop, erase, add, density, radiance, clamp)");
     cmd->add_option("input", o->input, "Lighting volume (.vdb)")->required();
     cmd->add_option("-o,--output", o->output, "Edited volume (.vdb)")->required();
     cmd->add_option("--crop", o->crop, "Keep only X0,Y0,Z0,X1,Y1,Z1 (world frame)");
-    cmd->add_option("--erase-box", o->eraseBoxes, "Empty X0,Y0,Z0,X1,Y1,Z1 (repeatable)");
-    cmd->add_option("--add-box", o->addBoxes, "Emissive box X0,Y0,Z0,X1,Y1,Z1:R,G,B[:SIGMA] (repeatable; SIGMA default 100)");
-    cmd->add_option("--add-sphere", o->addSpheres, "Emissive sphere X,Y,Z,RADIUS:R,G,B[:SIGMA] (repeatable)");
+    cmd->add_option("--erase-box", o->eraseBoxes, "Empty X0,Y0,Z0,X1,Y1,Z1 (repeatable)")->allow_extra_args(false);
+    cmd->add_option("--add-box", o->addBoxes, "Emissive box X0,Y0,Z0,X1,Y1,Z1:R,G,B[:SIGMA] (repeatable; SIGMA default 100)")
+        ->allow_extra_args(false);
+    cmd->add_option("--add-sphere", o->addSpheres, "Emissive sphere X,Y,Z,RADIUS:R,G,B[:SIGMA] (repeatable)")
+        ->allow_extra_args(false);
     cmd->add_option("--scale-density", o->scaleDensity, "Multiply every density by K");
-    cmd->add_option("--exposure", o->exposure, "Multiply every radiance by K");
+    cmd->add_option("--scale-radiance", o->scaleRadiance, "Multiply every radiance by K");
     cmd->add_option("--clamp-density", o->clampDensity, "Clamp densities to at most D (> 0, per scene unit)");
     cmd->add_option("--clamp-radiance", o->clampRadiance, "Clamp radiance components to at most R (> 0)");
-    cmd->add_flag("--half", o->half, "Store values as 16-bit halves on disk (values above 65000 are clamped, with a warning)");
+    addHalfFlag(cmd, o->half);
+    addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runEdit(*o); });
 }
 

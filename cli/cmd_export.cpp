@@ -3,6 +3,7 @@
 // values within half precision) plus manifest.json; see houdini_export/README.md.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "core/path_guard.h"
 #include "houdini_export/dcc_export.h"
 
@@ -46,7 +47,7 @@ void addExportCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Export directory (created; an existing export is replaced only with --force)")
         ->required();
     cmd->add_flag("--force", o->force, "Replace an existing export at --output (edits made to it are lost)");
-    cmd->add_flag("--strict", o->strict, "Refuse NaN/Inf/negative values instead of sanitising them");
+    addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runExport(*o); });
 }
 

@@ -3,6 +3,7 @@
 // lighting volume: shells become levels, axes return to lighthouse's world frame.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "core/path_guard.h"
 #include "houdini_export/dcc_import.h"
 #include "vdb/volume_io.h"
@@ -38,7 +39,7 @@ void addImportCommand(CLI::App& app) {
     cmd->add_option("input", o->input, "Export directory written by 'lighthouse export'")->required();
     cmd->add_option("--from", o->source, "Program it was exported for: blender or houdini")->required();
     cmd->add_option("-o,--output", o->output, "Lighting volume (.vdb)")->required();
-    cmd->add_flag("--half", o->half, "Store values as 16-bit halves on disk");
+    addHalfFlag(cmd, o->half);
     cmd->callback([o] { runImport(*o); });
 }
 

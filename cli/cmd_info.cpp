@@ -1,6 +1,7 @@
 // `lighthouse info FILE.vdb`: levels, boxes, voxel sizes, active voxels, memory, value ranges.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 
 #include <openvdb/tools/Count.h>
 
@@ -64,7 +65,7 @@ void addInfoCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("info", "Describe a lighting volume file: levels, boxes, "
                                                "voxel sizes, active voxels, memory, value ranges");
     cmd->add_option("file", opts->file, "Lighting volume (.vdb)")->required();
-    cmd->add_flag("--strict", opts->strict, "Refuse NaN/Inf/negative values instead of sanitising");
+    addStrictFlag(cmd, opts->strict);
     cmd->callback([opts] { printInfo(*opts); });
 }
 

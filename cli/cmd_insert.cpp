@@ -1,7 +1,8 @@
-// `lighthouse insert --volume V.vdb --image ref.png --cameras cameras.json --object sphere
+// `lighthouse insert V.vdb --image ref.png --cameras cameras.json --object sphere
 //  --at X,Y,Z [--scale S] [--rotate RX,RY,RZ] --material mirror [--object ...] -o OUT.png`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
@@ -74,7 +75,8 @@ void writeOutput(const ImageRGB& image, const std::string& path, const InsertCom
 void runInsert(const InsertCommandOptions& o) {
     const std::string ext = fileExtension(o.output);
     if (ext != ".exr" && ext != ".png") throw InputError("output '" + o.output + "' must end in .exr or .png");
-    std::vector<NamedInput> inputs = {{o.volume, "--volume"}, {o.image, "--image"}, {o.cameras, "--cameras"},
+    requirePositiveExposure(o.exposure);
+    std::vector<NamedInput> inputs = {{o.volume, "the input volume"}, {o.image, "--image"}, {o.cameras, "--cameras"},
                                       {o.path, "--path"}};
     for (const auto& object : o.objects) inputs.push_back({object, "--object"});
     requireOutputIsNotAnInput(o.output, "-o", inputs);
@@ -139,16 +141,25 @@ void addInsertCommand(CLI::App& app) {
     auto o = std::make_shared<InsertCommandOptions>();
     CLI::App* cmd = app.add_subcommand(
         "insert", "Insert virtual objects into a photograph, lit at every surface point by a lighting volume");
-    cmd->add_option("--volume", o->volume, "Lighting volume (.vdb)")->required();
+    cmd->add_option("volume", o->volume, "Lighting volume (.vdb)")->required();
     cmd->add_option("--image", o->image, "The photograph (PNG/JPEG sRGB or linear EXR)")->required();
     cmd->add_option("--cameras", o->cameras, "cameras.json of the photograph")->required();
     cmd->add_option("--view", o->view, "Camera of the photograph: ref, src or tgt")->capture_default_str();
-    cmd->add_option("--object", o->objects, "sphere, cube, torus, cylinder or an .obj file (repeat per object)")->required();
-    cmd->add_option("--at", o->at, "Object centre X,Y,Z in the world frame (one per object)")->required();
-    cmd->add_option("--scale", o->scales, "Object radius, scene units (default 0.2; once for all or per object)");
-    cmd->add_option("--rotate", o->rotations, "Euler angles RX,RY,RZ in degrees (once for all or per object)");
+    // Each repeatable option takes one value per use, so that a plain argument after it is
+    // the volume, not a second value.
+    cmd->add_option("--object", o->objects, "sphere, cube, torus, cylinder or an .obj file (repeat per object)")
+        ->required()
+        ->allow_extra_args(false);
+    cmd->add_option("--at", o->at, "Object centre X,Y,Z in the world frame (one per object)")
+        ->required()
+        ->allow_extra_args(false);
+    cmd->add_option("--scale", o->scales, "Object radius, scene units (default 0.2; once for all or per object)")
+        ->allow_extra_args(false);
+    cmd->add_option("--rotate", o->rotations, "Euler angles RX,RY,RZ in degrees (once for all or per object)")
+        ->allow_extra_args(false);
     cmd->add_option("--material", o->materials,
-                    "mirror | glossy:ROUGHNESS | diffuse:R,G,B (default mirror; once for all or per object)");
+                    "mirror | glossy:ROUGHNESS | diffuse:R,G,B (default mirror; once for all or per object)")
+        ->allow_extra_args(false);
     cmd->add_option("--samples", o->insert.samples, "Rays per glossy/diffuse shading point")->capture_default_str();
     cmd->add_option("--pixel-samples", o->insert.pixelSamples, "Primary rays per pixel and axis")->capture_default_str();
     cmd->add_option("--max-depth", o->insert.maxDepth, "Object-to-object bounces")->capture_default_str();
@@ -157,9 +168,8 @@ void addInsertCommand(CLI::App& app) {
     cmd->add_flag("--single-envmap", o->insert.singleEnvmap,
                   "Light each object by one envmap at its centre (to compare with per-point lighting)");
     cmd->add_option("--path", o->path, "Move the first object along the points of this file: frames, contact sheet, epipolar image");
-    cmd->add_option("--exposure", o->exposure, "PNG exposure multiplier")->capture_default_str();
-    cmd->add_flag("--png", o->alsoPng, "With an .exr output, also write an sRGB PNG beside it");
-    cmd->add_flag("--strict", o->strict, "Refuse NaN/Inf/negative values in the volume instead of sanitising");
+    addImageFlags(cmd, o->alsoPng, o->exposure);
+    addStrictFlag(cmd, o->strict);
     cmd->add_option("-o,--output", o->output, "Output .png (sRGB) or .exr (linear)")->required();
     cmd->callback([o] { runInsert(*o); });
 }

@@ -2,6 +2,7 @@
 // built by code (vdb/example_volume.h), for demos and tests.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "vdb/example_volume.h"
@@ -54,7 +55,7 @@ void addMakeExampleCommand(CLI::App& app) {
     cmd->add_option("--cameras", o->cameras, "Also write the example's cameras.json here");
     cmd->add_option("--levels", o->levels, "Number of nested levels")->capture_default_str();
     cmd->add_option("--res", o->resolution, "Voxels per side of every level")->capture_default_str();
-    cmd->add_flag("--half", o->half, "Store values as 16-bit halves on disk");
+    addHalfFlag(cmd, o->half);
     cmd->callback([o] { makeExample(*o); });
 }
 

@@ -81,7 +81,7 @@ void addMergeCommand(CLI::App& app) {
     auto dirs = std::make_shared<std::vector<std::string>>();
     CLI::App* cmd = app.add_subcommand(
         "merge", "Join the outputs of a complete set of shards (synth, eval or predict --shard K/N) in each DIR");
-    cmd->add_option("dirs", *dirs, "Directories the shards wrote into (synth --out, eval -o, predict -o)")
+    cmd->add_option("dirs", *dirs, "Directories the shards wrote into (synth -o, eval -o, predict -o)")
         ->required();
     cmd->footer(
         "Refuses an incomplete set (names the missing shards), records that disagree, and a directory merged "

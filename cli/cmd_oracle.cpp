@@ -1,5 +1,8 @@
-// `lighthouse oracle SCENE_DIR -o oracle.vdb [--levels 5 --res 64] [--envmaps-out DIR]`
+// `lighthouse oracle SCENE_DIR -o oracle.vdb [--levels 5 --res 64] [--envmaps-out DIR [--png]] [--half]`
+#include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
+#include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "render/envmap.h"
@@ -25,6 +28,9 @@ struct OracleCommandOptions {
     int supersample = 3;
     std::string envmapsOut;
     std::string hdriDir = LIGHTHOUSE_HDRI_DIR;
+    bool half = false;
+    bool alsoPng = false;
+    float exposure = 1.f;
 };
 
 void runOracle(const OracleCommandOptions& o) {
@@ -36,13 +42,17 @@ void runOracle(const OracleCommandOptions& o) {
                                             {(dir / "cameras.json").string(), "the example's cameras.json"},
                                             {o.hdriDir, "--hdri-dir"}};
     requireOutputIsNotAnInput(o.output, "-o", inputs);
+    requirePositiveExposure(o.exposure);
     synth::BakeOptions bake;
     const synth::Scene scene = synth::loadScene((dir / "scene.json").string(), &bake);
     const CamerasFile cameras = loadCamerasFile((dir / "cameras.json").string());
     if (!o.envmapsOut.empty())
-        for (const auto& e : cameras.envmaps)  // the ground-truth envmaps are read for their size
-            requireOutputIsNotAnInput((fs::path(o.envmapsOut) / e.file).string(), "--envmaps-out",
-                                      {{(dir / e.file).string(), "the example's " + e.file}});
+        for (const auto& e : cameras.envmaps) {  // the ground-truth envmaps are read for their size
+            const std::vector<NamedInput> truth = {{(dir / e.file).string(), "the example's " + e.file}};
+            const std::string out = (fs::path(o.envmapsOut) / e.file).string();
+            requireOutputIsNotAnInput(out, "--envmaps-out", truth);
+            if (o.alsoPng) requireOutputIsNotAnInput(withExtension(out, ".png"), "--png", truth);
+        }
     if (!cameras.far) throw InputError("'" + (dir / "cameras.json").string() + "' has no 'far' depth");
     const VolumeLayout layout = VolumeLayout::fromFarDepth(*cameras.far, o.levels, o.resolution);
 
@@ -54,7 +64,7 @@ void runOracle(const OracleCommandOptions& o) {
     std::cerr << "oracle: voxelising into " << layout.levels << " x " << layout.resolution << "^3\n";
     LightingVolume volume = synth::oracleVolume(scene, field, layout, {o.supersample, 8.0});
     volume.refCamera = cameras.ref;
-    saveVolume(o.output, volume);
+    warnOfHalfClamping(saveVolume(o.output, volume, VolumeSaveOptions{o.half}), "--half");
     std::cerr << "oracle: " << volume.activeVoxelCount() << " active voxels -> " << o.output << "\n";
 
     if (!o.envmapsOut.empty()) {
@@ -66,9 +76,12 @@ void runOracle(const OracleCommandOptions& o) {
             options.width = probe.width;
             options.height = probe.height;
             const std::string out = (fs::path(o.envmapsOut) / e.file).string();
-            writeImage(renderEnvmap(prepared, e.position, options), out);
+            const ImageRGB envmap = renderEnvmap(prepared, e.position, options);
+            writeImage(envmap, out, o.exposure);
+            const bool png = o.alsoPng && fileExtension(out) == ".exr";
+            if (png) writePng(envmap, withExtension(out, ".png"), o.exposure);
             std::cerr << "oracle: envmap at (" << e.position.x() << ", " << e.position.y() << ", "
-                      << e.position.z() << ") -> " << out << "\n";
+                      << e.position.z() << ") -> " << out << (png ? " (+ .png)" : "") << "\n";
         }
     }
 }
@@ -84,8 +97,11 @@ void addOracleCommand(CLI::App& app) {
     cmd->add_option("--levels", o->levels, "Nested levels")->capture_default_str();
     cmd->add_option("--res", o->resolution, "Voxels per side of every level")->capture_default_str();
     cmd->add_option("--supersample", o->supersample, "Sub-samples per voxel and axis")->capture_default_str();
-    cmd->add_option("--envmaps-out", o->envmapsOut,
-                    "Also render the oracle's envmaps at the example's ground-truth points into this directory");
+    CLI::Option* envmaps = cmd->add_option(
+        "--envmaps-out", o->envmapsOut,
+        "Also render the oracle's envmaps at the example's ground-truth points into this directory");
+    addImageFlags(cmd, o->alsoPng, o->exposure).need(envmaps);
+    addHalfFlag(cmd, o->half);
     cmd->add_option("--hdri-dir", o->hdriDir, "Folder of the panoramas the scene's windows use")
         ->capture_default_str();
     cmd->callback([o] { runOracle(*o); });

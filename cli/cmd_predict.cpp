@@ -1,9 +1,11 @@
-// `lighthouse predict --ref REF.png --src SRC.png --cameras cameras.json [--model M] -o scene.vdb`
+// `lighthouse predict --ref REF.png --src SRC.png --cameras cameras.json [--model M] [--at X,Y,Z ...]
+//  [--points FILE] [--png] -o scene.vdb`
 // `lighthouse predict --pairs LIST | --examples DIR -o OUT_DIR [--shard K/N]`: many pairs, one
 // model load; OUT_DIR/NAME.vdb each, and predictions.json (or a shard record, cli/shard_merge.h).
 #include "cli/cli_common.h"
 #include "cli/shard_merge.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "cli/net_commands.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
@@ -30,8 +32,12 @@ namespace {
 
 struct PredictOptions {
     std::string ref, src, cameras, model, output, device = "cpu";
-    std::vector<std::string> envmapsAt;
+    std::vector<std::string> envmapsAt;  // --at
+    std::string pointsFile;              // --points
     std::string envmapSize = "240x120";
+    bool alsoPng = false;
+    float exposure = 1.f;
+    bool half = false;
     float pruneAlpha = net::kDefaultPruneAlpha;
     std::string pairs, examples, shard;  // batch form
 };
@@ -102,7 +108,8 @@ void runPredictBatch(const PredictOptions& o, int threads) {
     if (!o.pairs.empty() && !o.examples.empty()) throw InputError("give --pairs or --examples, not both");
     if (!o.ref.empty() || !o.src.empty() || !o.cameras.empty())
         throw InputError("--ref, --src and --cameras are for one pair; --pairs and --examples list many");
-    if (!o.envmapsAt.empty()) throw InputError("--envmap-at is for one pair, not with --pairs or --examples");
+    if (!o.envmapsAt.empty() || !o.pointsFile.empty() || o.alsoPng)
+        throw InputError("--at, --points and --png are for one pair, not with --pairs or --examples");
     if (fileExtension(o.output) == ".vdb")
         throw InputError("with --pairs or --examples, -o is a directory (NAME.vdb each), not '" + o.output + "'");
     const Shard shard = o.shard.empty() ? Shard{} : parseShard(o.shard);
@@ -124,7 +131,8 @@ void runPredictBatch(const PredictOptions& o, int threads) {
     for (const auto& w : net::stereoPairWarnings(pair)) std::cerr << "warning: " << w << "\n";
         const net::Prediction p = predictor.predict(pair);
         const std::string output = item.name + ".vdb";
-        saveVdb((fs::path(o.output) / output).string(), &p.volume, &p.mpi);
+        warnOfHalfClamping(saveVdb((fs::path(o.output) / output).string(), &p.volume, &p.mpi, VolumeSaveOptions{o.half}),
+                           "--half");
         nlohmann::json entry = predictionEntry(item.name, item.ref, item.src, item.cameras, output);
         entry["index"] = i;
         entry["seconds"] = p.seconds;
@@ -162,7 +170,12 @@ void runPredict(const PredictOptions& o, int threads) {
     const auto start = std::chrono::steady_clock::now();
     net::StereoPair pair{readImage(o.ref), readImage(o.src), loadCamerasFile(o.cameras)};
     std::vector<Vec3d> points;
-    for (const auto& text : o.envmapsAt) points.push_back(parsePoint(text, "--envmap-at"));
+    for (const auto& text : o.envmapsAt) points.push_back(parsePoint(text, "--at"));
+    if (!o.pointsFile.empty())
+        for (const Vec3d& p : readPointsFile(o.pointsFile)) points.push_back(p);
+    requirePositiveExposure(o.exposure);
+    if (points.empty() && (o.alsoPng || o.exposure != 1.f))
+        throw InputError("--png and --exposure are for the envmaps of --at or --points, and none was given");
     EnvmapOptions envOptions;
     parseSize(o.envmapSize, envOptions.width, envOptions.height);
     envOptions.validate();
@@ -185,7 +198,7 @@ void runPredict(const PredictOptions& o, int threads) {
     } else {
         std::cerr << "predict: depth range from cameras.json: " << p.range.near << " .. " << p.range.far << "\n";
     }
-    saveVdb(o.output, &p.volume, &p.mpi);
+    warnOfHalfClamping(saveVdb(o.output, &p.volume, &p.mpi, VolumeSaveOptions{o.half}), "--half");
     std::cerr << "predict: network " << p.seconds << " s; " << p.volume.activeVoxelCount() << " active voxels, MPI of "
               << p.mpi.planeCount() << " planes -> " << o.output << "\n";
     if (!points.empty()) {
@@ -195,9 +208,9 @@ void runPredict(const PredictOptions& o, int threads) {
             const std::string exr = withExtension(path, ".exr");
             const ImageRGB env = renderEnvmap(prepared, points[i], envOptions);
             writeImage(env, exr);
-            writePng(env, withExtension(exr, ".png"));
+            if (o.alsoPng) writePng(env, withExtension(exr, ".png"), o.exposure);
             std::cerr << "predict: envmap at (" << points[i].x() << ", " << points[i].y() << ", " << points[i].z()
-                      << ") -> " << exr << " (+ .png)\n";
+                      << ") -> " << exr << (o.alsoPng ? " (+ .png)" : "") << "\n";
         }
     }
     std::cerr << "predict: done in " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
@@ -226,8 +239,14 @@ void addPredictCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();
-    cmd->add_option("--envmap-at", o->envmapsAt, "Also render envmaps at these points X,Y,Z (next to the output)");
+    cmd->add_option("--at", o->envmapsAt,
+                    "Also render an envmap at this point X,Y,Z (repeatable: --at A --at B), "
+                    "OUT_000.exr, OUT_001.exr, ... next to the output")
+        ->allow_extra_args(false);
+    cmd->add_option("--points", o->pointsFile, "Points file of envmaps to render, as --at");
     cmd->add_option("--envmap-size", o->envmapSize, "Size of those envmaps, WxH")->capture_default_str();
+    addImageFlags(cmd, o->alsoPng, o->exposure);  // for those envmaps: checked in runPredict
+    addHalfFlag(cmd, o->half);
     cmd->add_option("-o,--output", o->output, "Output .vdb (MPI planes + lighting volume levels); a directory in the batch form")
         ->required();
     cmd->callback([o, &threads] { runPredict(*o, threads); });

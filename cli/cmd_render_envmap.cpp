@@ -1,6 +1,7 @@
 // `lighthouse render-envmap FILE.vdb --at X,Y,Z [...] -o OUT.exr|.png`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "cli/quadrature_flags.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
@@ -33,8 +34,7 @@ void renderEnvmaps(const RenderEnvmapOptions& o) {
     const std::string ext = fileExtension(o.output);
     if (ext != ".exr" && ext != ".png")
         throw InputError("output '" + o.output + "' must end in .exr or .png");
-    if (!(o.exposure > 0.f) || !std::isfinite(o.exposure))
-        throw InputError("exposure must be a positive number");
+    requirePositiveExposure(o.exposure);
     EnvmapOptions options;
     parseSize(o.size, options.width, options.height);
     if (o.reference) {
@@ -87,17 +87,16 @@ void addRenderEnvmapCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "render-envmap", "Render equirectangular envmaps (incident radiance) at world points");
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
-    cmd->add_option("--at", o->at, "World point X,Y,Z (repeatable)");
-    cmd->add_option("--points", o->pointsFile, "Text file, one point 'x y z' per line");
+    cmd->add_option("--at", o->at, "World point X,Y,Z (repeatable: --at A --at B)")->allow_extra_args(false);
+    cmd->add_option("--points", o->pointsFile, "Points file: one point 'x y z' per line");
     cmd->add_option("--size", o->size, "Envmap size WxH with W = 2H")->capture_default_str();
-    cmd->add_option("--exposure", o->exposure, "PNG exposure multiplier")->capture_default_str();
     addQuadratureFlags(cmd, o->quadrature);
     cmd->add_option("--threshold", o->threshold, "Stop a ray once transmittance drops below")
         ->capture_default_str();
     cmd->add_flag("--reference", o->reference,
                   "Reference mode: 0.05-voxel fixed steps, no empty-space skipping, no early stop");
-    cmd->add_flag("--png", o->alsoPng, "With an .exr output, also write an sRGB PNG beside it");
-    cmd->add_flag("--strict", o->strict, "Refuse NaN/Inf/negative values instead of sanitising");
+    addImageFlags(cmd, o->alsoPng, o->exposure);
+    addStrictFlag(cmd, o->strict);
     cmd->add_option("-o,--output", o->output,
                     "Output .exr (linear) or .png (sRGB); numbered _000, _001... for several points")
         ->required();

@@ -1,7 +1,9 @@
-// `lighthouse render-view FILE.vdb --cameras cameras.json --view ref -o OUT.png`
+// `lighthouse render-view FILE.vdb --cameras cameras.json --view ref -o OUT.png|OUT.exr [--png]`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "cli/quadrature_flags.h"
+#include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "render/image_io.h"
@@ -19,24 +21,31 @@ struct RenderViewOptions {
     std::string cameras;
     std::string view = "ref";
     float exposure = 1.f;
+    bool alsoPng = false;
     QuadratureFlags quadrature;
     bool strict = false;
     std::string output;
 };
 
 void renderViewCommand(const RenderViewOptions& o) {
-    if (!(o.exposure > 0.f) || !std::isfinite(o.exposure))
-        throw InputError("exposure must be a positive number");
-    requireOutputIsNotAnInput(o.output, "-o", {{o.file, "the input volume"}, {o.cameras, "--cameras"}});
+    const std::string ext = fileExtension(o.output);
+    if (ext != ".exr" && ext != ".png") throw InputError("output '" + o.output + "' must end in .exr or .png");
+    requirePositiveExposure(o.exposure);
+    const std::vector<NamedInput> inputs = {{o.file, "the input volume"}, {o.cameras, "--cameras"}};
+    requireOutputIsNotAnInput(o.output, "-o", inputs);
+    const bool png = o.alsoPng && ext == ".exr";
+    if (png) requireOutputIsNotAnInput(withExtension(o.output, ".png"), "--png", inputs);
     const CamerasFile cameras = loadCamerasFile(o.cameras);
     const PinholeCamera& camera = cameras.view(o.view);
     MarchOptions march;
     o.quadrature.applyTo(march);
     march.validate();
     const RenderVolume prepared(loadVolumeForCli(o.file, o.strict));
-    writeImage(renderView(prepared, camera, march), o.output, o.exposure);
+    const ImageRGB image = renderView(prepared, camera, march);
+    writeImage(image, o.output, o.exposure);
+    if (png) writePng(image, withExtension(o.output, ".png"), o.exposure);
     std::cerr << "view '" << o.view << "' " << camera.width << "x" << camera.height << " -> "
-              << o.output << "\n";
+              << o.output << (png ? " (+ .png)" : "") << "\n";
 }
 
 }  // namespace
@@ -48,9 +57,9 @@ void addRenderViewCommand(CLI::App& app) {
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
     cmd->add_option("--cameras", o->cameras, "cameras.json (docs/conventions.md#cameras)")->required();
     cmd->add_option("--view", o->view, "Which camera: ref, src or tgt")->capture_default_str();
-    cmd->add_option("--exposure", o->exposure, "PNG exposure multiplier")->capture_default_str();
+    addImageFlags(cmd, o->alsoPng, o->exposure);
     addQuadratureFlags(cmd, o->quadrature);
-    cmd->add_flag("--strict", o->strict, "Refuse NaN/Inf/negative values instead of sanitising");
+    addStrictFlag(cmd, o->strict);
     cmd->add_option("-o,--output", o->output, "Output .png (sRGB) or .exr (linear)")->required();
     cmd->callback([o] { renderViewCommand(*o); });
 }

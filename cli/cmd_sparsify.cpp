@@ -1,10 +1,11 @@
 // `lighthouse sparsify IN.vdb -o OUT.vdb [--target-db 0.1] [--base-psnr 30] [--tau T]
-//  [--levels-from-depth NEAR,FAR] [--float]`: stores only what the scene needs (vdb/sparsity.h).
+//  [--levels-from-depth NEAR,FAR] [--half]`: stores only what the scene needs (vdb/sparsity.h).
 // Without --tau the bound is searched: the largest tau whose envmaps (at random free-space
-// points, through the file's half precision) stay within the PSNR that guarantees at most
+// points, through the file's precision) stay within the PSNR that guarantees at most
 // --target-db of loss for a volume that reaches --base-psnr against ground truth.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "render/speed_error.h"
@@ -23,8 +24,9 @@ struct SparsifyOptions {
     double targetDb = 0.1;  // PSNR loss allowed against ground truth, dB
     double basePsnr = 30;   // PSNR the volume reaches against ground truth, dB (higher: stricter)
     std::optional<double> tau;  // explicit bound; not given: searched from targetDb
-    bool floatPrecision = false;
-    int points = 4;
+    bool half = false;
+    bool strict = false;
+    int points = 4;  // --count
 };
 
 void runSparsify(const SparsifyOptions& o) {
@@ -37,19 +39,19 @@ void runSparsify(const SparsifyOptions& o) {
     if (o.tau) SparsityOptions{*o.tau}.validate();
     if (!(o.targetDb > 0 && o.targetDb <= 10)) throw InputError("--target-db must be in (0, 10] dB");
     if (!(o.basePsnr > 0 && o.basePsnr < 100)) throw InputError("--base-psnr must be in (0, 100) dB");
-    if (o.points < 1 || o.points > 64) throw InputError("--points must be in [1, 64]");
+    if (o.points < 1 || o.points > 64) throw InputError("--count must be in [1, 64]");
     SparsityOptions options;
     if (!o.depthRange.empty()) {
         const Vec3d range = parsePoint(o.depthRange + ",1", "--levels-from-depth NEAR,FAR");
         options.maxLevels = levelsForDepthRange(range[0], range[1], 64);
     }
-    const LightingVolume volume = loadVolumeForCli(o.input, false);
+    const LightingVolume volume = loadVolumeForCli(o.input, o.strict);
     if (o.tau) {
         options.tau = *o.tau;
     } else {
         MemoryErrorOptions search;
         search.points = o.points;
-        search.halfPrecision = !o.floatPrecision;
+        search.halfPrecision = o.half;
         const double required = requiredPsnrForLoss(o.targetDb, o.basePsnr);
         std::fprintf(stderr, "sparsify: envmaps must stay within %.1f dB of the unpruned ones\n", required);
         const BoundChoice choice = chooseSparsityBound(volume, required, search,
@@ -58,7 +60,7 @@ void runSparsify(const SparsifyOptions& o) {
     }
     SparsityStats stats;
     const LightingVolume pruned = sparsify(volume, options, &stats);
-    warnOfHalfClamping(saveSparseVolume(o.output, pruned, !o.floatPrecision), "use --float to keep them");
+    warnOfHalfClamping(saveSparseVolume(o.output, pruned, o.half), "--half");
     std::printf("tau %.3g (rays up to %.3g scene units, brightest colour %.3g: voxels of density <= %.3g per unit "
                 "dropped): %llu -> %llu active voxels, %.2f -> %.2f MB in memory, %d level(s) dropped, "
                 "%s on disk (%s, Blosc)\n",
@@ -66,7 +68,7 @@ void runSparsify(const SparsifyOptions& o) {
                 stats.maxColour > 0 ? stats.fieldBound / stats.maxColour : 0.0,
                 static_cast<unsigned long long>(stats.activeBefore),
                 static_cast<unsigned long long>(stats.activeAfter), stats.memoryBefore / 1e6, stats.memoryAfter / 1e6,
-                stats.levelsDropped, o.output.c_str(), o.floatPrecision ? "float" : "half");
+                stats.levelsDropped, o.output.c_str(), o.half ? "half" : "float");
 }
 
 }  // namespace
@@ -80,8 +82,9 @@ void addSparsifyCommand(CLI::App& app) {
     cmd->add_option("--base-psnr", o->basePsnr, "PSNR the volume reaches against ground truth (dB)")->capture_default_str();
     cmd->add_option("--tau", o->tau, "Explicit bound in (0, 1]: largest change of any envmap pixel, linear radiance with white = 1 (skips the search)");
     cmd->add_option("--levels-from-depth", o->depthRange, "NEAR,FAR: keep the levels this depth range needs");
-    cmd->add_option("--points", o->points, "Random free-space points for the search (least dense points in fog)")->capture_default_str();
-    cmd->add_flag("--float", o->floatPrecision, "Store 32-bit floats instead of halves");
+    cmd->add_option("--count", o->points, "Random free-space points for the search (least dense points in fog)")->capture_default_str();
+    addHalfFlag(cmd, o->half);
+    addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runSparsify(*o); });
 }
 

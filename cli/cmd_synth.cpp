@@ -1,4 +1,4 @@
-// `lighthouse synth --seed S --count N --out DIR [--size 320x240] [--split train|test] [--shard K/N]`
+// `lighthouse synth --seed S --count N -o DIR [--size 320x240] [--split train|test] [--shard K/N]`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "synth/dataset.h"
@@ -68,7 +68,7 @@ void addSynthCommand(CLI::App& app) {
     cmd->add_option("--seed", o->synth.seed, "Index of the first example (example i uses seed + i)")
         ->capture_default_str();
     cmd->add_option("--count", o->synth.count, "Number of examples")->capture_default_str();
-    cmd->add_option("--out", o->synth.out, "Output directory (one split)")->required();
+    cmd->add_option("-o,--output", o->synth.out, "Output directory (one split)")->required();
     cmd->add_option("--split", o->synth.split, "train or test (disjoint seeds)")->capture_default_str();
     cmd->add_option("--size", o->size, "View size WxH")->capture_default_str();
     cmd->add_option("--envmap-size", o->envmapSize, "Envmap size WxH, W = 2H")->capture_default_str();
@@ -85,7 +85,7 @@ void addSynthCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--shard", o->shard,
                     "K/N: write only examples i with i mod N = K (0-based) and a shard record; several shards "
-                    "share one --out, and `lighthouse merge` writes manifest.json and the contact sheet");
+                    "share one --output, and `lighthouse merge` writes manifest.json and the contact sheet");
     cmd->add_option("--hdri-dir", o->synth.hdriDir, "Folder of equirectangular .exr panoramas for windows")
         ->capture_default_str();
     cmd->callback([o] { runSynth(*o); });

@@ -1,7 +1,8 @@
-// `lighthouse train --data DIR [--config standard] --out model.pt [--checkpoint PATH] [--init MODEL]`
+// `lighthouse train --data DIR [--config standard] -o model.pt [--checkpoint PATH] [--init MODEL] [--half]`
 // Data-parallel: `[--batch B] --world-size N --rank R --master HOST:PORT`, or torchrun's or
 // srun's variables (net/distributed.h, docs/distributed.md).
 #include "cli/commands.h"
+#include "cli/common_options.h"
 #include "cli/net_commands.h"
 #include "net/trainer.h"
 
@@ -16,7 +17,7 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--val", o->validation, "Held-out scenes for validation (default: the last 5% of --data)");
     cmd->add_option("--config", o->config, "standard (5 x 64^3 from 192x144, 32 planes, HDR), paper, or small")
         ->capture_default_str();
-    cmd->add_option("--out", o->out, "Model file; OUT.csv and OUT.png (training curves) are written next to it")
+    cmd->add_option("-o,--output", o->out, "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")
         ->capture_default_str();
     cmd->add_option("--checkpoint", o->checkpoint,
                     "Resumable training state, written atomically (default: OUT.checkpoint); keep it outside the "
@@ -30,7 +31,9 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--stop-after", o->stopAfter,
                     "End this sitting after N iterations, checkpointed; the same command resumes (0: run to the end)")
         ->capture_default_str();
-    cmd->add_flag("!--float-model", o->halfModel, "Write OUT in float32 (default: half precision, half the size)");
+    o->halfModel = false;  // float32 unless --half, as every command that writes values
+    addHalfFlag(cmd, o->halfModel, "Write OUT in 16-bit halves instead of float32 (half the size; the checkpoint "
+                                   "stays float32)");
     cmd->add_flag("!--no-augment", o->augment, "No exposure, white-balance and noise augmentation");
     cmd->add_option("--iterations", o->iterations, "Training iterations (optimiser steps, of --batch examples each)")
         ->capture_default_str();

@@ -1,10 +1,12 @@
-// lighthouse: one subcommand per file. Library errors are caught here once and reported as a
-// single line with a non-zero exit (OpenVDB's vdb_render model).
+// lighthouse: one subcommand per file. Library errors and CLI11's parse errors are caught here
+// once and reported as a single line "lighthouse: error: ..." with exit status 1 (OpenVDB's
+// vdb_render model); the grammar every command shares is docs/cli.md.
 //
 // Compiled twice: as `lighthouse`, without libtorch, which hands the network's commands to
 // `lighthouse-net` (cli/net_commands.h), and, when libtorch is found, as `lighthouse-net`,
 // which has every command (LIGHTHOUSE_HAS_NET).
 #include "cli/commands.h"
+#include "cli/deprecated_options.h"
 #include "cli/net_commands.h"
 #include "core/errors.h"
 
@@ -15,16 +17,46 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
+
+namespace {
+
+// A CLI11 parse error (unknown option, missing value, bad value) as the one documented line,
+// with the command whose --help lists the options; exit status 1. Help and --version
+// (exit code 0) print what CLI11 prints.
+int reportParseError(const CLI::App& app, const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::string message = e.what();
+    for (char& c : message)
+        if (c == '\n') c = ' ';
+    const std::vector<CLI::App*> commands = app.get_subcommands();
+    const std::string command = commands.empty() ? "" : " " + commands.front()->get_name();
+    std::cerr << "lighthouse: error: " << message << " (run 'lighthouse" << command << " --help')\n";
+    return 1;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
 #ifndef LIGHTHOUSE_HAS_NET
     if (const char* command = lh::cli::netCommandIn(argc, argv)) return lh::cli::runInNetBinary(argv, command);
 #endif
-    CLI::App app{"lighthouse: predict, store and render spatially-coherent lighting volumes"};
+    // Old option spellings become the new ones here, after the hand-over above, so that the
+    // warnings are printed once, by the binary that runs the command.
+    const std::vector<std::string> args = lh::cli::replaceDeprecatedOptions(argc, argv, std::cerr);
+    std::vector<const char*> argp;
+    for (const std::string& a : args) argp.push_back(a.c_str());
+
+    CLI::App app{"lighthouse " LIGHTHOUSE_VERSION ": predict, store and render spatially-coherent lighting volumes",
+                 "lighthouse"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Show help for every command");
+    app.set_version_flag("--version", "lighthouse " LIGHTHOUSE_VERSION);
+    // The global options are accepted after the command word too (`lighthouse train
+    // --threads 1 ...`): every command created below inherits this.
+    app.fallthrough();
     int threads = 0;
-    app.add_option("--threads", threads, "Worker threads (default: all cores)")
+    app.add_option("--threads", threads, "Worker threads (default: all cores); before or after the command")
         ->check(CLI::Range(0, 1024));
     lh::cli::addInfoCommand(app);
 #ifdef LIGHTHOUSE_HAS_NET
@@ -56,20 +88,25 @@ int main(int argc, char** argv) {
             threadLimit = std::make_unique<tbb::global_control>(
                 tbb::global_control::max_allowed_parallelism, threads);
     });
+    // No arguments: the usage, on stdout, and exit 0 (asking for nothing is asking how).
+    if (args.size() == 1) {
+        std::cout << app.help();
+        return 0;
+    }
     try {
         // CLI11 reports a mistyped command only as "a subcommand is required": name it.
-        const std::string first = argc > 1 ? argv[1] : "";
+        const std::string first = args.size() > 1 ? args[1] : "";
         const auto known = [&](const CLI::App* sub) { return sub->get_name() == first; };
         if (!first.empty() && first[0] != '-' &&
             std::as_const(app).get_subcommands(known).empty()) {
-            std::cerr << "lighthouse: error: unknown command '" << argv[1]
+            std::cerr << "lighthouse: error: unknown command '" << first
                       << "'; run 'lighthouse --help' for the list\n";
             return 1;
         }
         openvdb::initialize();
-        app.parse(argc, argv);
+        app.parse(int(argp.size()), argp.data());
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        return reportParseError(app, e);
     } catch (const lh::Error& e) {
         std::cerr << "lighthouse: error: " << e.what() << "\n";
         return 1;

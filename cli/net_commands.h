@@ -22,8 +22,8 @@ inline constexpr NetCommand kNetCommands[] = {
 };
 const char* netCommandDescription(const char* name);
 
-// The network command a command line runs (its first word that is not an option or the
-// value of --threads), or nullptr.
+// The network command a command line runs (its command word, cli/command_word.h), or
+// nullptr. `--threads N` may come before or after it: both are handed over as they are.
 const char* netCommandIn(int argc, char** argv);
 
 // Replaces this process by `lighthouse-net` beside this executable, with the same arguments.

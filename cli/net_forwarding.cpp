@@ -1,5 +1,7 @@
 #include "cli/net_commands.h"
 
+#include "cli/command_word.h"
+
 #include "core/sibling_executable.h"
 
 #include <unistd.h>
@@ -18,18 +20,11 @@ const char* netCommandDescription(const char* name) {
 }
 
 const char* netCommandIn(int argc, char** argv) {
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--threads") {
-            ++i;  // its value
-            continue;
-        }
-        if (!arg.empty() && arg[0] == '-') continue;
-        for (const NetCommand& c : kNetCommands)
-            if (arg == c.name) return c.name;
-        return nullptr;  // the first word names another command
-    }
-    return nullptr;
+    const int i = commandWordIndex(argc, argv);
+    if (i == 0) return nullptr;
+    for (const NetCommand& c : kNetCommands)
+        if (std::strcmp(argv[i], c.name) == 0) return c.name;
+    return nullptr;  // the command word names another command
 }
 
 int runInNetBinary(char** argv, const char* command) {

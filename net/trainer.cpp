@@ -118,7 +118,7 @@ bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
         c10::IValue config, iteration;
         archive.read("config", config);
         if (NetConfig::fromJson(config.toStringRef(), o.checkpointPath()).toJson() != s.net->config.toJson())
-            throw FileError("checkpoint '" + o.checkpointPath() + "' was trained with another configuration; delete it or pick another --out");
+            throw FileError("checkpoint '" + o.checkpointPath() + "' was trained with another configuration; delete it or pick another -o");
         archive.read("net", net);
         archive.read("discriminator", disc);
         archive.read("optimizer", opt);

@@ -85,7 +85,7 @@ void SynthOptions::validate() const {
         throw InputError("--envmap-size must be W x H with W = 2 H and 4 <= H <= 2048");
     if (envmapsPerExample < 1 || envmapsPerExample > 16) throw InputError("--envmaps must be in [1, 16]");
     if (supersample < 1 || supersample > 8) throw InputError("--supersample must be in [1, 8]");
-    if (out.empty()) throw InputError("--out is required");
+    if (out.empty()) throw InputError("-o/--output is required");
     if (oracleLevels < 0 || oracleLevels > 8) throw InputError("--oracle-levels must be in [0, 8]");
     if (oracleLevels > 0) VolumeLayout{20.0, oracleLevels, oracleResolution}.validate();
 }

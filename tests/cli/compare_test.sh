@@ -63,7 +63,7 @@ ok --stdout "^ +PSNR [(]dB[)] +RGB angular error [(]deg[)] +log-luminance RMSE +
 ok --stdout "^all content +$num +$num +$num +$num$" -- "$lh" compare a_000.exr a_001.exr
 # Every radiance doubled (the same volume at exposure 2): the irradiance is off by exactly
 # the truth's own size, the RGB angle not at all.
-"$lh" edit ../example.vdb --exposure 2 -o bright.vdb >/dev/null 2>&1 &&
+"$lh" edit ../example.vdb --scale-radiance 2 -o bright.vdb >/dev/null 2>&1 &&
     "$lh" render-envmap bright.vdb --at 0,0,1 --size 32x16 -o bright.exr 2>/dev/null ||
     { echo "edit/render-envmap failed"; exit 1; }
 ok --stdout "^all content +$num +0[.]00 +$num +1[.]00$" -- "$lh" compare bright.exr a_000.exr

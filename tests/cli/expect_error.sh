@@ -8,9 +8,10 @@
 #   -a, --absent PATH    PATH must not exist after the command, nor any dot-temporary beside
 #                        it (.STEM.tmp*, the AtomicOutput naming, or .NAME*); repeatable.
 #                        PATH is deleted before the run so that stale files do not count.
-#   -p, --parse-error    the failure is a CLI11 parse error: the exit code must be one of
-#                        CLI11's (100-127) and the usage hint may follow the message,
-#                        instead of the default checks below
+#   -p, --parse-error    the failure is a command-line parse error (unknown option, missing
+#                        or bad value): besides the default checks, the exit code must be
+#                        exactly 1 and stderr exactly one line (CLI11's own report is two
+#                        lines with exit codes 100-127)
 #   -m, --max-memory MB  run under `ulimit -v` (virtual memory, MiB), default 4096, so that
 #                        a command that ignores a memory bound fails here instead of
 #                        exhausting the machine
@@ -26,7 +27,7 @@
 set -u
 
 usage() {
-    sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//' >&2
+    sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 
@@ -73,26 +74,25 @@ code=$?
 
 problems=()
 if [ $parse_error -eq 1 ]; then
-    if [ $code -lt 100 ] || [ $code -gt 127 ]; then
-        problems+=("exit code $code, expected a CLI11 parse error code (100-127)")
+    [ $code -eq 1 ] || problems+=("exit code $code, expected 1 for a parse error")
+    lines=$(wc -l <"$err")
+    [ "$lines" -eq 1 ] || problems+=("stderr has $lines lines, expected one for a parse error")
+fi
+if [ $code -ne 1 ] && [ $code -ne 2 ]; then
+    if [ $code -eq 0 ]; then
+        problems+=("exit code 0: the command succeeded but should have failed")
+    elif [ $code -ge 128 ]; then
+        problems+=("exit code $code: killed by signal $((code - 128)) (crash?)")
+    else
+        problems+=("exit code $code, expected 1 or 2")
     fi
-else
-    if [ $code -ne 1 ] && [ $code -ne 2 ]; then
-        if [ $code -eq 0 ]; then
-            problems+=("exit code 0: the command succeeded but should have failed")
-        elif [ $code -ge 128 ]; then
-            problems+=("exit code $code: killed by signal $((code - 128)) (crash?)")
-        else
-            problems+=("exit code $code, expected 1 or 2")
-        fi
-    fi
-    n=$(grep -ci 'error' "$err")
-    if [ "$n" -ne 1 ]; then
-        problems+=("stderr has $n lines mentioning 'error', expected exactly one")
-    fi
-    if ! grep -qi 'error' "$err" || ! grep -i 'error' "$err" | grep -q '^lighthouse: error: '; then
-        problems+=("the error line does not start with 'lighthouse: error: '")
-    fi
+fi
+n=$(grep -ci 'error' "$err")
+if [ "$n" -ne 1 ]; then
+    problems+=("stderr has $n lines mentioning 'error', expected exactly one")
+fi
+if ! grep -qi 'error' "$err" || ! grep -i 'error' "$err" | grep -q '^lighthouse: error: '; then
+    problems+=("the error line does not start with 'lighthouse: error: '")
 fi
 for re in "${patterns[@]}"; do
     grep -Eq -- "$re" "$err" || problems+=("stderr does not match /$re/")

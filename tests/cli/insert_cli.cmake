@@ -6,7 +6,7 @@ lighthouse_cli_ok(insert_photo
   ARGS render-view example.vdb --cameras cameras.json -o photo.png)
 set_tests_properties(cli.ok.insert_photo PROPERTIES FIXTURES_SETUP lighthouse_insert_photo)
 
-set(LH_INSERT_BASE --volume example.vdb --image photo.png --cameras cameras.json)
+set(LH_INSERT_BASE example.vdb --image photo.png --cameras cameras.json)
 lighthouse_cli_ok(insert_mirror_sphere
   PNG ins_mirror.png
   ARGS insert ${LH_INSERT_BASE} --object sphere --at 0,0.5,2.5 --scale 0.2 -o ins_mirror.png)
@@ -27,7 +27,7 @@ endforeach()
 lighthouse_cli_error(insert_image_camera_mismatch
   EXPECT "image is 320x240 but the camera is 64x48"
   ABSENT ins_bad1.png
-  ARGS insert --volume example.vdb --image photo.png --cameras cameras_ok.json --object sphere
+  ARGS insert example.vdb --image photo.png --cameras cameras_ok.json --object sphere
        --at 0,0,1 -o ins_bad1.png)
 lighthouse_cli_error(insert_unknown_material
   EXPECT "material 'gold'"
@@ -63,16 +63,16 @@ lighthouse_cli_ok(bench_envmap_report
   STDOUT "paper-spheres" "openvdb-fixed-step" "ours" "Against the targets" "times faster"
          "not judged: this run rendered 16x8 envmaps"
   FILES bench_out/speed_error.csv bench_out/speed_error.md bench_out/speed_error.svg
-  ARGS bench-envmap example.vdb --points 1 --size 16x8 --out bench_out)
+  ARGS bench-envmap example.vdb --count 1 --size 16x8 -o bench_out)
 lighthouse_cli_error(bench_envmap_zero_repeats
   EXPECT "--repeats must be in [[]1, 100[]]"
-  ARGS bench-envmap example.vdb --points 1 --size 16x8 --repeats 0 --out bench_out_bad)
+  ARGS bench-envmap example.vdb --count 1 --size 16x8 --repeats 0 -o bench_out_bad)
 set_tests_properties(cli.error.bench_envmap_zero_repeats PROPERTIES FIXTURES_REQUIRED lighthouse_cli)
 
 # `lighthouse edit`: an emissive box added at +x shows up in a re-rendered envmap file.
 lighthouse_cli_ok(edit_add_box_and_scale
   FILES edited.vdb
-  ARGS edit example.vdb --add-box 1.0,-0.2,-0.2,1.4,0.2,0.2:5,0,0 --exposure 2 --clamp-radiance 100
+  ARGS edit example.vdb --add-box 1.0,-0.2,-0.2,1.4,0.2,0.2:5,0,0 --scale-radiance 2 --clamp-radiance 100
        -o edited.vdb)
 lighthouse_cli_ok(edit_then_render
   EXR edited_env.exr

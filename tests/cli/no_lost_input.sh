@@ -43,15 +43,15 @@ refused() {
 }
 
 refused insert_onto_its_photo photo.png -- \
-    "$lh" insert --volume room.vdb --image photo.png --cameras cameras.json --object sphere --at 0,0,2 -o ./photo.png
+    "$lh" insert room.vdb --image photo.png --cameras cameras.json --object sphere --at 0,0,2 -o ./photo.png
 refused insert_onto_a_symlink_to_its_photo photo.png -- \
-    "$lh" insert --volume room.vdb --image photo.png --cameras cameras.json --object sphere --at 0,0,2 -o photo_link.png
+    "$lh" insert room.vdb --image photo.png --cameras cameras.json --object sphere --at 0,0,2 -o photo_link.png
 refused compare_csv_onto_ground_truth gt/s0/env_0.exr -- \
     "$lh" compare --batch pred gt --csv gt/s0/env_0.exr
 refused import_into_the_export_it_reads exported/level_0.vdb -- \
     "$lh" import exported --from blender -o exported/level_0.vdb
 refused edit_onto_a_hard_link_of_its_input room.vdb -- \
-    "$lh" edit room.vdb --exposure 2 -o room_hardlink.vdb
+    "$lh" edit room.vdb --scale-radiance 2 -o room_hardlink.vdb
 refused sparsify_onto_its_input room.vdb -- \
     "$lh" sparsify room.vdb --tau 0.001 -o ./room.vdb
 
@@ -61,7 +61,7 @@ before=$(sha256sum <exported/level_0.vdb)
 code=$?
 [ $code -eq 1 ] && grep -q -- "--force" err.txt || fail "export over an existing export: exit $code, $(cat err.txt)"
 [ "$before" = "$(sha256sum <exported/level_0.vdb)" ] || fail "export over an existing export changed it"
-"$lh" edit room.vdb --exposure 3 -o brighter.vdb >/dev/null 2>&1 || fail "edit for --force case"
+"$lh" edit room.vdb --scale-radiance 3 -o brighter.vdb >/dev/null 2>&1 || fail "edit for --force case"
 "$lh" export brighter.vdb --for blender -o exported --force </dev/null >out.txt 2>err.txt ||
     fail "export --force failed: $(cat err.txt)"
 [ "$before" != "$(sha256sum <exported/level_0.vdb)" ] || fail "export --force did not replace the export"
@@ -69,7 +69,7 @@ echo "ok export_keeps_an_existing_export_unless_force"
 
 # A 250-byte file name: the temporary beside it must stay within the 255-byte limit.
 long=$(printf 'n%.0s' $(seq 246)).vdb
-"$lh" edit room.vdb --exposure 2 -o "$long" </dev/null >out.txt 2>err.txt || fail "250-byte output name: $(cat err.txt)"
+"$lh" edit room.vdb --scale-radiance 2 -o "$long" </dev/null >out.txt 2>err.txt || fail "250-byte output name: $(cat err.txt)"
 [ -s "$long" ] || fail "250-byte output name: no file"
 ls -a | grep -q "\.tmp" && fail "a temporary was left behind: $(ls -a | grep '\.tmp')"
 echo "ok output_name_near_the_limit"

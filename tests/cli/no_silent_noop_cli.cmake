@@ -19,7 +19,7 @@ lighthouse_cli_error(edit_clamp_radiance_negative
 lighthouse_cli_error(edit_output_with_an_image_name
   EXPECT "edit[.]exr.*must end in [.]vdb"
   ABSENT edit.exr
-  ARGS edit example.vdb --exposure 2 -o edit.exr)
+  ARGS edit example.vdb --scale-radiance 2 -o edit.exr)
 lighthouse_cli_error(sparsify_tau_zero
   EXPECT "--tau must be positive"
   ABSENT sparse_tau0.vdb

@@ -64,11 +64,16 @@ lighthouse_cli_error(predict_output_not_vdb
 lighthouse_cli_error(train_missing_data
   EXPECT "data directory 'no_such_dir' not found"
   MAX_MEMORY_MB ${LH_TORCH_MB}
-  ARGS train --data no_such_dir --out train_bad.pt)
+  ARGS train --data no_such_dir -o train_bad.pt)
 lighthouse_cli_error(train_unknown_config
   EXPECT "unknown configuration 'huge'"
   MAX_MEMORY_MB ${LH_TORCH_MB}
-  ARGS train --data . --config huge --out train_bad.pt)
+  ARGS train --data . --config huge -o train_bad.pt)
+# lighthouse-net's parse errors are the same one line as lighthouse's.
+lighthouse_cli_error(parse_unknown_option_of_train
+  PARSE_ERROR EXPECT "not expected: --bogus.*run 'lighthouse train --help'"
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS train --data . --bogus)
 lighthouse_cli_error(eval_not_a_data_set
   EXPECT "holds no examples"
   MAX_MEMORY_MB ${LH_TORCH_MB}
@@ -78,8 +83,9 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
   # The bundled model, depth range from cameras.json and estimated from the pair.
   lighthouse_cli_ok(predict_bundled_model
     FILES pred_ok.vdb
+    EXR pred_ok_000.exr
     PNG pred_ok_000.png
-    ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --envmap-at 0.3,0.3,1.1 -o pred_ok.vdb)
+    ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --at 0.3,0.3,1.1 --png -o pred_ok.vdb)
   lighthouse_cli_ok(predict_estimated_range
     FILES pred_est.vdb
     ARGS predict ${LH_PAIR_ARGS} --cameras ${CMAKE_CURRENT_BINARY_DIR}/pair_no_range.json -o pred_est.vdb)
@@ -100,3 +106,15 @@ endif()
 lighthouse_cli_ok(help_predict_through_lighthouse_net
   STDOUT "Usage:.*predict" "--ref" "--src" "--cameras" "--device"
   ARGS --threads 1 predict --help)
+
+# The grammar in the network's commands: --threads on either side of the command word, train's
+# -o and --half, predict's --at, --points and --png, and their old spellings.
+if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
+  set(LH_GRAMMAR_PAIR ${LH_PAIR})
+else()
+  set(LH_GRAMMAR_PAIR "")
+endif()
+add_test(NAME cli.grammar_net
+  COMMAND bash ${LH_CLI_SCRIPTS}/grammar_net_test.sh ${LH_CLI_EXE} ${CMAKE_CURRENT_BINARY_DIR}/grammar_net
+          "${LH_GRAMMAR_PAIR}")
+set_tests_properties(cli.grammar_net PROPERTIES TIMEOUT 300 LABELS cli)

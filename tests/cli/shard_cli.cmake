@@ -5,15 +5,15 @@
 lighthouse_cli_error(synth_shard_out_of_range
   EXPECT "--shard must be K/N with 0 <= K < N.*got '5/4'"
   ABSENT syn_shard_bad
-  ARGS synth --out syn_shard_bad --count 2 --shard 5/4)
+  ARGS synth -o syn_shard_bad --count 2 --shard 5/4)
 lighthouse_cli_error(synth_shard_not_a_fraction
   EXPECT "--shard must be K/N.*got 'x'"
   ABSENT syn_shard_bad
-  ARGS synth --out syn_shard_bad --count 2 --shard x)
+  ARGS synth -o syn_shard_bad --count 2 --shard x)
 lighthouse_cli_error(synth_shard_of_zero
   EXPECT "--shard must be K/N.*got '0/0'"
   ABSENT syn_shard_bad
-  ARGS synth --out syn_shard_bad --count 2 --shard 0/0)
+  ARGS synth -o syn_shard_bad --count 2 --shard 0/0)
 lighthouse_cli_error(merge_without_shard_records
   EXPECT "'adir' holds no shard records"
   ARGS merge adir)

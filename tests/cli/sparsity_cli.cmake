@@ -27,15 +27,20 @@ lighthouse_cli_error(sparsify_bad_depth_range
 lighthouse_cli_error(bench_sparsity_bad_taus
   EXPECT "--taus: expected numbers in .0, 1."
   ABSENT bench_sparsity_bad/memory_error.csv
-  ARGS bench-sparsity example.vdb --taus 1e-3,abc --out bench_sparsity_bad)
+  ARGS bench-sparsity example.vdb --taus 1e-3,abc -o bench_sparsity_bad)
 lighthouse_cli_error(bench_sparsity_random_bytes
   EXPECT "random[.]vdb.*VDB"
   ABSENT bench_sparsity_random/memory_error.csv
-  ARGS bench-sparsity random.vdb --out bench_sparsity_random)
+  ARGS bench-sparsity random.vdb -o bench_sparsity_random)
+# Floats unless --half, as every command that writes values.
 lighthouse_cli_ok(sparsify_example
-  STDOUT "active voxels" "half"
+  STDOUT "active voxels" "sparse_example[.]vdb on disk [(]float"
   FILES sparse_example.vdb
   ARGS sparsify example.vdb -o sparse_example.vdb --tau 1e-3)
+lighthouse_cli_ok(sparsify_example_half
+  STDOUT "sparse_half[.]vdb on disk [(]half"
+  FILES sparse_half.vdb
+  ARGS sparsify example.vdb -o sparse_half.vdb --tau 1e-3 --half)
 # Dense fog (every voxel has a little density, as predicted volumes do): bench-sparsity used
 # to refuse it ("no empty space to put query points in"); it must now take the least dense
 # points and write the full report. The fog is the fixture volume painted over with sigma 0.05.
@@ -47,6 +52,6 @@ lighthouse_cli_ok(bench_sparsity_fog
          "Against the target, at the default bound tau 0[.]0001" "no row at that bound"
   FILES bench_sparsity_fog/memory_error.csv bench_sparsity_fog/memory_error.svg
         bench_sparsity_fog/memory_breakdown.md
-  ARGS bench-sparsity fog.vdb --points 1 --size 16x8 --taus 1e-3,0.1 --out bench_sparsity_fog)
+  ARGS bench-sparsity fog.vdb --count 1 --size 16x8 --taus 1e-3,0.1 -o bench_sparsity_fog)
 set_tests_properties(cli.ok.sparsity_make_fog PROPERTIES FIXTURES_SETUP lighthouse_fog)
 set_tests_properties(cli.ok.bench_sparsity_fog PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_fog")

@@ -10,23 +10,23 @@ lighthouse_cli_ok(help_oracle
 lighthouse_cli_error(synth_bad_split
   EXPECT "--split must be train or test"
   ABSENT syn_bad_split
-  ARGS synth --out syn_bad_split --split validation --count 1)
+  ARGS synth -o syn_bad_split --split validation --count 1)
 lighthouse_cli_error(synth_bad_size
   EXPECT "--size must be between"
   ABSENT syn_bad_size
-  ARGS synth --out syn_bad_size --size 10x10 --count 1)
+  ARGS synth -o syn_bad_size --size 10x10 --count 1)
 lighthouse_cli_error(synth_bad_envmap_size
   EXPECT "--envmap-size must be W x H with W = 2 H"
   ABSENT syn_bad_env
-  ARGS synth --out syn_bad_env --envmap-size 100x100 --count 1)
+  ARGS synth -o syn_bad_env --envmap-size 100x100 --count 1)
 lighthouse_cli_error(synth_zero_count
   EXPECT "--count must be in"
   ABSENT syn_zero
-  ARGS synth --out syn_zero --count 0)
+  ARGS synth -o syn_zero --count 0)
 lighthouse_cli_error(synth_missing_panoramas
   EXPECT "no panoramas.*no_such_hdri"
   ABSENT syn_no_hdri
-  ARGS synth --out syn_no_hdri --count 1 --hdri-dir no_such_hdri)
+  ARGS synth -o syn_no_hdri --count 1 --hdri-dir no_such_hdri)
 
 # A tiny data set: the fixture of the oracle and compare tests below.
 lighthouse_cli_ok(synth_tiny
@@ -34,7 +34,7 @@ lighthouse_cli_ok(synth_tiny
   PNG syn_tiny/contact_sheet.png syn_tiny/000000/ref.png syn_tiny/000000/env_0_mask.png
   EXR syn_tiny/000000/ref.exr syn_tiny/000000/depth.exr syn_tiny/000000/env_0.exr
   ARGS synth --seed 3 --count 2 --size 48x36 --envmap-size 32x16 --envmaps 1 --supersample 1
-       --out syn_tiny)
+       -o syn_tiny)
 set_tests_properties(cli.ok.synth_tiny PROPERTIES FIXTURES_SETUP lighthouse_synth_tiny)
 
 lighthouse_cli_ok(oracle_tiny

@@ -19,12 +19,12 @@ expect_error() {  # REGEX COMMAND...: exits 1 with one error line matching REGEX
 }
 
 tiny=(--seed 5 --count 3 --size 48x36 --envmap-size 32x16 --envmaps 2 --supersample 1 --texel 0.5 --gather 16)
-lh synth "${tiny[@]}" --out one 2>/dev/null
-lh synth "${tiny[@]}" --out two --shard 1/2 2>/dev/null
+lh synth "${tiny[@]}" -o one 2>/dev/null
+lh synth "${tiny[@]}" -o two --shard 1/2 2>/dev/null
 [ ! -e two/000000 ] && [ -d two/000001 ] && [ ! -e two/000002 ] || fail "shard 1/2 wrote other examples than 000001"
 [ ! -e two/manifest.json ] || fail "a shard wrote manifest.json"
 expect_error "incomplete set of shards.*1 of 2 done, missing shard 0" lh merge two
-lh synth "${tiny[@]}" --out two --shard 0/2 2>/dev/null
+lh synth "${tiny[@]}" -o two --shard 0/2 2>/dev/null
 lh merge two 2>/dev/null
 expect_error "merged already" lh merge two
 same_dataset one two

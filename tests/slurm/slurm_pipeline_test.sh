@@ -53,7 +53,7 @@ echo "pipeline: $(( $(date +%s) - t0 )) s"
 [ "$(ls "$tmp"/out/logs/lh-synth-test-*.log | wc -l)" = 4 ] || fail "expected one log per synth task"
 
 # The same work in one process each.
-"$exe" --threads 1 synth --split test --count 4 $tiny --out "$tmp/one/test" 2>/dev/null
+"$exe" --threads 1 synth --split test --count 4 $tiny -o "$tmp/one/test" 2>/dev/null
 "$exe" predict --examples "$tmp/one/test" --model "$src/models/standard.pt" -o "$tmp/one/predictions" 2>/dev/null
 "$exe" eval --data "$tmp/one/test" --model "$src/models/standard.pt" --no-oracle -o "$tmp/one/eval" >/dev/null 2>&1
 same_dataset "$tmp/one/test" "$tmp/out/test"
