@@ -20,7 +20,7 @@ if "$bin" predict --help >/dev/null 2>&1; then
   at0=0.2957831,0.319871,1.1225537
   at1=-0.8327363,-0.3857153,3.127743
   "$bin" predict --ref "$pair/ref.png" --src "$pair/src.png" --cameras "$pair/cameras.json" \
-    --envmap-at "$at0" --envmap-at "$at1" -o "$out/predicted.vdb"
+    --at "$at0" --at "$at1" --png -o "$out/predicted.vdb"
   "$bin" info "$out/predicted.vdb"
   "$bin" compare "$out/predicted_000.exr" "$pair/env_0.exr" --mask "$pair/env_0_mask.png"
   "$bin" compare "$out/predicted_001.exr" "$pair/env_1.exr" --mask "$pair/env_1_mask.png"
@@ -28,9 +28,9 @@ if "$bin" predict --help >/dev/null 2>&1; then
   objects=(--object sphere --at 0.3,0.32,1.12 --scale 0.15 --rotate 0,0,0 --material mirror
            --object torus --at -0.83,-0.39,3.13 --scale 0.3 --rotate 60,20,0 --material glossy:0.25
            --object cube --at -0.25,0.35,1.5 --scale 0.12 --rotate 20,40,0 --material diffuse:0.8,0.3,0.2)
-  "$bin" insert --volume "$out/predicted.vdb" --image "$pair/ref.png" --cameras "$pair/cameras.json" \
+  "$bin" insert "$out/predicted.vdb" --image "$pair/ref.png" --cameras "$pair/cameras.json" \
     "${objects[@]}" --png -o "$out/inserted.exr"
-  "$bin" insert --volume "$out/predicted.vdb" --image "$pair/ref.png" --cameras "$pair/cameras.json" \
+  "$bin" insert "$out/predicted.vdb" --image "$pair/ref.png" --cameras "$pair/cameras.json" \
     "${objects[@]}" --single-envmap -o "$out/inserted_single_envmap.png"
 else
   echo "==> this build has no prediction network (libtorch missing): skipping predict and insert"

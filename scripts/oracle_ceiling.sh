@@ -16,7 +16,7 @@ configs=("5 64" "5 32" "3 64" "5 128")
 
 mkdir -p "$out"
 [ -f "$out/test/manifest.json" ] ||
-  "$bin" synth --split test --seed 0 --count "$count" --out "$out/test"
+  "$bin" synth --split test --seed 0 --count "$count" -o "$out/test"
 
 table="$out/oracle_ceiling.md"
 {

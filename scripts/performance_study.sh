@@ -43,19 +43,21 @@ bin=${LIGHTHOUSE:-build/cli/lighthouse}
 [ -x "$bin" ] || { echo "performance_study.sh: error: $bin not found: build first (bash scripts/build.sh)" >&2; exit 1; }
 
 if [ "$quick" = 1 ]; then
-  speed_args=(--points 2 --repeats 1 --size 60x30)
-  memory_args=(--points 1 --size 60x30 --taus 1e-4,1e-1)
+  speed_args=(--count 2 --repeats 1 --size 60x30)
+  memory_args=(--count 1 --size 60x30 --taus 1e-4,1e-1)
 else
-  speed_args=(--points 8 --repeats 10)
+  speed_args=(--count 8 --repeats 10)
   memory_args=()
 fi
+# The pruned volumes are rendered as their half-precision files read back.
+memory_args+=(--half)
 step=0
 say() { step=$((step + 1)); echo "==> [$step] $*" >&2; }
 
 mkdir -p "$out"
 say "volumes in $out/"
 if [ ! -f "$out/oracle.vdb" ]; then
-  [ -f "$out/test/manifest.json" ] || "$bin" synth --split test --seed 0 --count 2 --out "$out/test" >&2
+  [ -f "$out/test/manifest.json" ] || "$bin" synth --split test --seed 0 --count 2 -o "$out/test" >&2
   "$bin" oracle "$out/test/000001" -o "$out/oracle.vdb" >&2
 fi
 [ -f "$out/example.vdb" ] || "$bin" make-example -o "$out/example.vdb" >&2
@@ -77,11 +79,11 @@ for i in "${!volumes[@]}"; do
   methods=()
   [ "$v" = oracle ] || methods=(--methods reference-check ours-cells paper-spheres)
   say "speed against error: $v"
-  "$bin" bench-envmap "$out/$v.vdb" "${speed_args[@]}" "${methods[@]}" --out "$out/$v/speed" > /dev/null
+  "$bin" bench-envmap "$out/$v.vdb" "${speed_args[@]}" "${methods[@]}" -o "$out/$v/speed" > /dev/null
   say "memory against error: $v"
   dataset=()
   [ -z "${datasets[$i]}" ] || dataset=(--dataset "${datasets[$i]}")
-  "$bin" bench-sparsity "$out/$v.vdb" "${memory_args[@]}" "${dataset[@]}" --out "$out/$v/memory" > /dev/null
+  "$bin" bench-sparsity "$out/$v.vdb" "${memory_args[@]}" "${dataset[@]}" -o "$out/$v/memory" > /dev/null
 done
 
 # The summary: every run's own reading of the targets, then where the tables and plots are.

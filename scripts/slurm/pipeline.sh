@@ -81,7 +81,7 @@ array="--array=0-$((shards - 1))"
 # shellcheck disable=SC2086
 synth() {  # SPLIT COUNT
     submit "synth-$1" $array "$here/shard_task.sh" "$shards" "$out/$1" \
-        "$exe" --threads 1 synth --split "$1" --count "$2" $synth_args --out "$out/$1"
+        "$exe" --threads 1 synth --split "$1" --count "$2" $synth_args -o "$out/$1"
 }
 
 data_jobs=()
@@ -102,7 +102,7 @@ if [ -z "$model" ]; then
     model=$out/model.pt
     # shellcheck disable=SC2086
     train=$(submit train --dependency=afterok:$merge_data --ntasks="$train_tasks" \
-        "$here/train_task.sh" "$exe" train --data "$out/train" $train_args --out "$model")
+        "$here/train_task.sh" "$exe" train --data "$out/train" $train_args -o "$model")
     echo "train: job $train ($train_tasks ranks)"
     after=$train
 fi

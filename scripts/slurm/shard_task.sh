@@ -5,7 +5,7 @@
 #
 #   sbatch --array=0-$((N - 1)) shard_task.sh N RECORD_DIR LIGHTHOUSE COMMAND ARGS...
 #
-# RECORD_DIR is where the command writes (synth --out, predict -o, eval -o). N is given
+# RECORD_DIR is where the command writes (synth -o, predict -o, eval -o). N is given
 # rather than read from SLURM_ARRAY_TASK_COUNT so that a re-submission of some indices only
 # (--array=1,3) still shards by the full count.
 set -euo pipefail
