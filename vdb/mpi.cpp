@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace lh {
 
@@ -66,7 +67,18 @@ openvdb::math::Transform::Ptr mpiPlaneTransform(const PinholeCamera& camera, dou
                            axisJ.x(), axisJ.y(), axisJ.z(), 0.0,  //
                            axisK.x(), axisK.y(), axisK.z(), 0.0,  //
                            origin.x(), origin.y(), origin.z(), 1.0);
-    return openvdb::math::Transform::createLinearTransform(m);
+    try {
+        return openvdb::math::Transform::createLinearTransform(m);
+    } catch (const openvdb::ArithmeticError&) {
+        // OpenVDB says "nearly singular matrix": the plane's voxels (depth / fx wide) are too
+        // small to invert, which only an absurd depth range does.
+        std::ostringstream why;
+        why << "an MPI plane at depth " << depth << " m has voxels " << ax
+            << " m wide, too small for OpenVDB: the cameras' near depth is implausibly small "
+               "(near and far in cameras.json are depths in metres, e.g. 0.5 and 20; "
+               "without them predict estimates them from the pair)";
+        throw InputError(why.str());
+    }
 }
 
 openvdb::GridPtrVec mpiToGrids(const Mpi& mpi) {

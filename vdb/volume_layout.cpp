@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace lh {
 
@@ -15,6 +16,9 @@ namespace {
 // hence the per-level resolution cap: 512^3 is 2 GiB.
 constexpr double kMaxLayoutVoxels = 268435456.0;
 constexpr int kMaxResolution = 512;
+// Smallest voxel of a layout from the cameras, metres: a micrometre, far below any room's
+// detail and far above what OpenVDB's transforms can invert.
+constexpr double kMinVoxelSize = 1e-6;
 }  // namespace
 
 VolumeLayout VolumeLayout::fromFarDepth(double far, int levels, int resolution) {
@@ -25,6 +29,14 @@ VolumeLayout VolumeLayout::fromFarDepth(double far, int levels, int resolution) 
     layout.levels = levels;
     layout.resolution = resolution;
     layout.validate();
+    // OpenVDB cannot invert the transform of voxels this small ("non-zero scale values
+    // required"); a far depth this small is a mistake in the cameras, not a scene.
+    if (layout.voxelSize(levels - 1) < kMinVoxelSize) {
+        std::ostringstream why;
+        why << "the cameras' far depth of " << far << " m gives voxels smaller than " << kMinVoxelSize
+            << " m: near and far in cameras.json are depths in metres (e.g. 0.5 and 20)";
+        throw InputError(why.str());
+    }
     return layout;
 }
 

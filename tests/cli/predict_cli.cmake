@@ -11,6 +11,8 @@ string(JSON LH_NO_RANGE REMOVE "${LH_NO_RANGE}" far)
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/pair_no_range.json "${LH_NO_RANGE}")
 string(JSON LH_WIDE_BASELINE SET "${LH_PAIR_CAMERAS}" src cam_to_world 0 3 3.0)
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/pair_wide_baseline.json "${LH_WIDE_BASELINE}")
+string(JSON LH_TINY_NEAR SET "${LH_PAIR_CAMERAS}" near 1e-12)
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/pair_tiny_near.json "${LH_TINY_NEAR}")
 set(LH_PAIR_ARGS --ref ${LH_PAIR}/ref.png --src ${LH_PAIR}/src.png)
 # libtorch reserves a lot of address space at start-up: allow it.
 set(LH_TORCH_MB 16384)
@@ -31,6 +33,12 @@ lighthouse_cli_error(predict_output_folder_not_writable
   ABSENT /sys/lh_pred.vdb
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json -o /sys/lh_pred.vdb)
+# OpenVDB's "nearly singular matrix" becomes a message about the cameras' depth range.
+lighthouse_cli_error(predict_near_depth_implausibly_small
+  EXPECT "the cameras' near depth is implausibly small"
+  ABSENT pred_tiny_near.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${CMAKE_CURRENT_BINARY_DIR}/pair_tiny_near.json -o pred_tiny_near.vdb)
 lighthouse_cli_error(predict_missing_image
   EXPECT "no_such_ref[.]png"
   ABSENT pred_bad3.vdb

@@ -41,6 +41,19 @@ TEST(Mpi, PlaneTransformPutsPixelsAtTheirWorldPosition) {
     }
 }
 
+// OpenVDB's "nearly singular matrix" is turned into a message about the depth range.
+TEST(Mpi, APlaneTooNearForOpenVdbIsBlamedOnTheNearDepth) {
+    const PinholeCamera cam = exampleCameras().ref;
+    try {
+        mpiPlaneTransform(cam, 1e-12);
+        FAIL() << "no error for a plane at 1e-12 m";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("the cameras' near depth is implausibly small"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_NO_THROW(mpiPlaneTransform(cam, 0.01));  // a centimetre is a plausible near depth
+}
+
 TEST(Mpi, SaveLoadRoundTripIsExact) {
     PinholeCamera cam = exampleCameras().ref;
     cam.width = 40;

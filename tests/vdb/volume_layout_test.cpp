@@ -63,6 +63,15 @@ TEST(VolumeLayout, ImpossibleLayoutsAreRefused) {
     EXPECT_THROW((VolumeLayout{10.0, 1, 1024}.validate()), ResourceError);
     EXPECT_THROW((VolumeLayout{10.0, 16, 512}.validate()), ResourceError);
     EXPECT_THROW(VolumeLayout::fromFarDepth(std::nan("")), InputError);
+    // A far depth that would give voxels OpenVDB cannot invert is blamed on the cameras.
+    try {
+        VolumeLayout::fromFarDepth(2e-12);
+        ADD_FAILURE() << "no error for far = 2e-12";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("near and far in cameras.json are depths in metres"),
+                  std::string::npos) << e.what();
+    }
+    EXPECT_NO_THROW(VolumeLayout::fromFarDepth(0.01));
     EXPECT_NO_THROW((VolumeLayout{10.0, 5, 64}.validate()));
 }
 
