@@ -71,6 +71,15 @@ LightingVolume loadVolumeForCli(const std::string& path, bool strict) {
     return volume;
 }
 
+VolumeFile loadVolumeFileForCli(const std::string& path, bool strict) {
+    std::vector<std::string> warnings;
+    VolumeLoadOptions options;
+    options.nonFinite = strict ? NonFinitePolicy::Reject : NonFinitePolicy::Sanitise;
+    VolumeFile file = loadVolumeFile(path, &warnings, options);
+    for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+    return file;
+}
+
 std::string numberedPath(const std::string& path, int index) {
     std::filesystem::path p(path);
     char suffix[16];

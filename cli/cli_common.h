@@ -19,6 +19,8 @@ std::vector<Vec3d> readPointsFile(const std::string& path);
 void parseSize(const std::string& text, int& width, int& height);
 // Loads a volume, printing sanitising warnings to stderr.
 LightingVolume loadVolumeForCli(const std::string& path, bool strict);
+// The same, with the file's MPI when it holds one (commands that pass the MPI on).
+VolumeFile loadVolumeFileForCli(const std::string& path, bool strict);
 // After a save: one "warning:" line on stderr when values were clamped to fit half precision,
 // ending with `hint` in parentheses (the flag that asked for halves, or how to avoid them).
 void warnOfHalfClamping(const VolumeSaveReport& saved, const std::string& hint);

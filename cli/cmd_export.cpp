@@ -1,6 +1,7 @@
 // `lighthouse export IN.vdb --for blender|houdini -o OUT_DIR`
 // Writes one .vdb per level (non-overlapping shells, the program's axes and grid names,
-// values within half precision) plus manifest.json; see houdini_export/README.md.
+// values within half precision), the MPI if the volume has one, and manifest.json; see
+// houdini_export/README.md.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "cli/common_options.h"
@@ -24,8 +25,8 @@ void runExport(const ExportOptions& o) {
     options.dcc = parseDcc(o.target, "--for");
     options.replaceExisting = o.force;
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the input volume"}});
-    const LightingVolume volume = loadVolumeForCli(o.input, o.strict);
-    const DccExportReport report = exportForDcc(volume, o.output, options);
+    const VolumeFile in = loadVolumeFileForCli(o.input, o.strict);
+    const DccExportReport report = exportForDcc(in.volume, o.output, options, in.mpi ? &*in.mpi : nullptr);
     for (const auto& w : report.warnings) std::cerr << "warning: " << w << "\n";
     const DccConvention conv = dccConvention(options.dcc);
     std::cout << o.input << " -> " << o.output << ": " << report.files.size() << " level file(s) for "
@@ -33,6 +34,9 @@ void runExport(const ExportOptions& o) {
     for (std::size_t k = 0; k < report.files.size(); ++k)
         std::cout << "  " << report.files[k] << ": level " << k << " shell, " << report.activeVoxels[k]
                   << " active voxel(s)\n";
+    if (in.mpi)
+        std::cout << "  " << report.mpiFile << ": the MPI, " << in.mpi->planeCount() << " plane(s) of "
+                  << in.mpi->camera.width << "x" << in.mpi->camera.height << " (kept for import, not rendered)\n";
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // `lighthouse import EXPORT_DIR --from blender|houdini -o OUT.vdb`
 // Reads an export (possibly edited in Blender, Houdini or python3-openvdb) back into a
-// lighting volume: shells become levels, axes return to lighthouse's world frame.
+// lighting volume: shells become levels, axes return to lighthouse's world frame, the edited
+// radiance grid wins (houdini_export/dcc_import.h), and an exported MPI comes back too.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "cli/common_options.h"
@@ -22,12 +23,16 @@ struct ImportOptions {
 void runImport(const ImportOptions& o) {
     const Dcc dcc = parseDcc(o.source, "--from");
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the export directory"}});
-    std::vector<std::string> warnings;
-    const LightingVolume volume = importFromDcc(o.input, dcc, &warnings);
-    for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
-    warnOfHalfClamping(saveVolume(o.output, volume, VolumeSaveOptions{o.half}), "--half");
+    DccImportReport report;
+    const LightingVolume volume = importFromDcc(o.input, dcc, &report);
+    for (const auto& w : report.warnings) std::cerr << "warning: " << w << "\n";
+    const Mpi* mpi = report.mpi ? &*report.mpi : nullptr;
+    warnOfHalfClamping(saveVdb(o.output, &volume, mpi, VolumeSaveOptions{o.half}), "--half");
     std::cout << o.input << " -> " << o.output << ": " << volume.levels.size() << " level(s), "
-              << volume.activeVoxelCount() << " active voxel(s)\n";
+              << volume.activeVoxelCount() << " active voxel(s)";
+    if (mpi) std::cout << ", and the MPI (" << mpi->planeCount() << " plane(s), from " << report.mpiFile << ")";
+    std::cout << "\n";
+    for (const auto& note : report.notes) std::cout << "  " << note << "\n";
 }
 
 }  // namespace

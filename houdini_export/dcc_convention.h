@@ -47,6 +47,7 @@ constexpr float kDccMaxValue = 65504.f;
 constexpr int kDccExportVersion = 1;
 inline const char* const kDccManifestName = "manifest.json";
 std::string dccLevelFileName(int level);  // "level_0.vdb"
+inline const char* const kDccMpiFileName = "mpi.vdb";
 
 DccConvention dccConvention(Dcc dcc);
 // "blender" / "houdini" (case-insensitive) -> Dcc; throws InputError naming `what`.

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "houdini_export/grid_checksum.h"
 #include "houdini_export/shells.h"
 
 #include <nlohmann/json.hpp>
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -59,6 +61,14 @@ struct LevelGrids {
     }
 };
 
+// A lighthouse transform in the program's axes (and, for Blender, its cell convention).
+openvdb::math::Transform::Ptr toDccTransform(const openvdb::math::Transform& xf, const DccConvention& conv) {
+    auto out = xf.copy();
+    if (conv.indexShift != 0.0) out->preTranslate(Vec3d(conv.indexShift));
+    out->postMult(rotationAsMat4(conv.worldToDcc));
+    return out;
+}
+
 LevelGrids convertShell(const VolumeLevel& shell, int k, const DccConvention& conv,
                         const DccExportOptions& options, DccClampReport& clamp) {
     LevelGrids g;
@@ -68,9 +78,7 @@ LevelGrids convertShell(const VolumeLevel& shell, int k, const DccConvention& co
     else
         g.emission = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
     g.color = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
-    auto xf = shell.transform().copy();
-    if (conv.indexShift != 0.0) xf->preTranslate(Vec3d(conv.indexShift));
-    xf->postMult(rotationAsMat4(conv.worldToDcc));
+    const auto xf = toDccTransform(shell.transform(), conv);
     const double voxel = std::cbrt(shell.voxelVolume());  // metres
     auto d = g.density->getAccessor();
     auto c = g.color->getAccessor();
@@ -117,22 +125,55 @@ LevelGrids convertShell(const VolumeLevel& shell, int k, const DccConvention& co
     return g;
 }
 
-void writeLevelFile(const std::string& path, const LevelGrids& g, int k, int levels,
-                    const DccConvention& conv) {
+// File metadata of every file of an export.
+openvdb::MetaMap exportMetadata(const DccConvention& conv, const std::string& exportId) {
     openvdb::MetaMap meta;
     meta.insertMeta("lighthouse_export_for", openvdb::StringMetadata(conv.name));
     meta.insertMeta("lighthouse_export_version", openvdb::Int32Metadata(kDccExportVersion));
-    meta.insertMeta("lighthouse_export_level", openvdb::Int32Metadata(k));
-    meta.insertMeta("lighthouse_export_levels", openvdb::Int32Metadata(levels));
+    meta.insertMeta("lighthouse_export_id", openvdb::StringMetadata(exportId));
     meta.insertMeta("lighthouse_axes", openvdb::StringMetadata(conv.axesText));
+    return meta;
+}
+
+void writeVdbFile(const std::string& path, const openvdb::GridCPtrVec& grids, const openvdb::MetaMap& meta) {
     try {
         openvdb::io::File file(path);
         file.setCompression(openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK);
-        file.write(g.all(), meta);
+        file.write(grids, meta);
         file.close();
     } catch (const openvdb::Exception& e) {
         throw FileError("cannot write '" + path + "': " + e.what());
     }
+}
+
+void writeLevelFile(const std::string& path, const LevelGrids& g, int k, int levels,
+                    const DccConvention& conv, const std::string& exportId) {
+    openvdb::MetaMap meta = exportMetadata(conv, exportId);
+    meta.insertMeta("lighthouse_export_level", openvdb::Int32Metadata(k));
+    meta.insertMeta("lighthouse_export_levels", openvdb::Int32Metadata(levels));
+    writeVdbFile(path, g.all(), meta);
+}
+
+// The MPI's planes as volume_io writes them (the camera in lighthouse's frame, which import
+// reads back), their transforms in the program's axes so that the planes show where they are.
+void writeMpiFile(const std::string& path, const Mpi& mpi, const DccConvention& conv, const std::string& exportId) {
+    openvdb::MetaMap meta = exportMetadata(conv, exportId);
+    meta.insertMeta("lighthouse_mpi_camera", openvdb::StringMetadata(cameraToJson(mpi.camera)));
+    openvdb::GridCPtrVec grids;
+    for (const auto& grid : mpiToGrids(mpi)) {
+        grid->setTransform(toDccTransform(grid->transform(), conv));
+        grids.push_back(grid);
+    }
+    writeVdbFile(path, grids, meta);
+}
+
+// 16 random hex digits naming one export: the manifest and every file carry it, so that a
+// manifest is never matched with another export's files.
+std::string newExportId() {
+    std::random_device rd;
+    char text[17];
+    std::snprintf(text, sizeof text, "%08x%08x", unsigned(rd()), unsigned(rd()));
+    return text;
 }
 
 bool isExportDirectory(const fs::path& dir) {
@@ -153,8 +194,9 @@ fs::path temporaryDirectoryBeside(const fs::path& finalDir, const char* tag) {
 }  // namespace
 
 DccExportReport exportForDcc(const LightingVolume& volume, const std::string& outDir,
-                             const DccExportOptions& options) {
+                             const DccExportOptions& options, const Mpi* mpi) {
     volume.validate();
+    if (mpi) mpi->validate();
     if (!(options.maxValue > 0) || !std::isfinite(options.maxValue))
         throw InputError("export value limit must be finite and positive");
     const DccConvention conv = dccConvention(options.dcc);
@@ -174,9 +216,11 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
     const std::vector<VolumeLevel> shells = makeShells(volume);
     const fs::path tmp = temporaryDirectoryBeside(parent / finalDir.filename(), "tmp");
     nlohmann::json manifest;
+    const std::string exportId = newExportId();
     try {
         fs::create_directory(tmp);
         manifest["lighthouse_export"] = kDccExportVersion;
+        manifest["export_id"] = exportId;
         manifest["for"] = conv.name;
         manifest["axes"] = conv.axesText;
         nlohmann::json rot = nlohmann::json::array();
@@ -195,14 +239,26 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
         for (std::size_t k = 0; k < shells.size(); ++k) {
             const LevelGrids g = convertShell(shells[k], int(k), conv, options, report.clamp);
             const std::string name = dccLevelFileName(int(k));
-            writeLevelFile((tmp / name).string(), g, int(k), int(shells.size()), conv);
+            writeLevelFile((tmp / name).string(), g, int(k), int(shells.size()), conv, exportId);
             report.files.push_back((finalDir / name).string());
             report.activeVoxels.push_back(g.density->activeVoxelCount());
+            nlohmann::json checksums = nlohmann::json::object();
+            for (const auto& grid : g.all()) checksums[grid->getName()] = gridChecksum(*grid);
             levels.push_back({{"file", name},
                               {"voxel_size", std::cbrt(shells[k].voxelVolume())},
-                              {"active_voxels", g.density->activeVoxelCount()}});
+                              {"active_voxels", g.density->activeVoxelCount()},
+                              {"checksums", checksums}});
         }
         manifest["levels"] = levels;
+        manifest["checksum"] = kGridChecksumMethod;
+        if (mpi) {
+            writeMpiFile((tmp / kDccMpiFileName).string(), *mpi, conv, exportId);
+            report.mpiFile = (finalDir / kDccMpiFileName).string();
+            manifest["mpi"] = {{"file", kDccMpiFileName},
+                               {"planes", mpi->planeCount()},
+                               {"width", mpi->camera.width},
+                               {"height", mpi->camera.height}};
+        }
         manifest["clamped"] = {{"density_voxels", report.clamp.densityClamped},
                                {"radiance_voxels", report.clamp.radianceClamped},
                                {"now_translucent_voxels", report.clamp.nowTranslucent}};

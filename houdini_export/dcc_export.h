@@ -7,8 +7,13 @@
 //                   `color` (Blender) / `Cd` (Houdini) Vec3SGrid, colour vector type: radiance
 //                   with the level's shell only (voxels under finer levels removed, shells.h)
 //                   and transforms rotated into the program's axes (dcc_convention.h);
-//   manifest.json   program, axes, levels, files, what was clamped; marks the directory as
-//                   an export so that `lighthouse import` recognises it.
+//   mpi.vdb         only when the volume came with an MPI (a predicted volume): its planes,
+//                   `mpi_rgb_P<d>` / `mpi_alpha_P<d>`, placed in the program's axes; import
+//                   restores the MPI from it (the DCC scripts do not render it);
+//   manifest.json   program, axes, levels, files, what was clamped, a checksum of every grid
+//                   (grid_checksum.h: import tells from them which grids were edited) and an
+//                   export id that every file of the export carries too; marks the directory
+//                   as an export so that `lighthouse import` recognises it.
 // One file per level because a Blender volume object renders all grids of its file with one
 // material and one step size, and Houdini's File SOP gives each file's grids the same names:
 // uniform names per file let one shader serve every level.
@@ -16,6 +21,7 @@
 
 #include "houdini_export/dcc_convention.h"
 #include "vdb/lighting_volume.h"
+#include "vdb/mpi.h"
 
 #include <string>
 #include <vector>
@@ -43,6 +49,7 @@ struct DccClampReport {
 struct DccExportReport {
     std::vector<std::string> files;  // written level files, coarsest first
     std::vector<std::size_t> activeVoxels;  // per level shell
+    std::string mpiFile;                    // the MPI's file, "" when there was no MPI
     DccClampReport clamp;
     std::vector<std::string> warnings;  // one line each, for the CLI to print
 };
@@ -50,9 +57,9 @@ struct DccExportReport {
 // Writes the export directory `outDir` atomically: everything goes to a temporary directory
 // beside it, which replaces `outDir` only once complete. An existing `outDir` is replaced only
 // if it is itself an export (holds a manifest.json); otherwise FileError. Throws InputError
-// for an invalid volume.
+// for an invalid volume. `mpi`, if given, is written too (mpi.vdb).
 DccExportReport exportForDcc(const LightingVolume& volume, const std::string& outDir,
-                             const DccExportOptions& options = {});
+                             const DccExportOptions& options = {}, const Mpi* mpi = nullptr);
 
 // Clamping rule for one voxel (exposed for tests). The radiance c is clamped to maxValue per
 // component; sigma is lowered to at most maxValue / max(1, max component of c) so that the

@@ -1,6 +1,7 @@
 #include "houdini_export/dcc_import.h"
 
 #include "core/errors.h"
+#include "houdini_export/dcc_edits.h"
 #include "houdini_export/shells.h"
 #include "vdb/safe_read.h"
 #include "vdb/volume_io.h"
@@ -48,18 +49,42 @@ nlohmann::json readManifest(const fs::path& dir, const DccConvention& conv) {
     return m;
 }
 
-openvdb::GridPtrVec readGrids(const std::string& path) {
+// The export id the manifest gives its files ("" for a manifest written before ids existed).
+std::string manifestExportId(const nlohmann::json& manifest, const fs::path& manifestPath) {
+    if (!manifest.contains("export_id")) return "";
+    if (!manifest["export_id"].is_string() || manifest["export_id"].get<std::string>().empty())
+        throw FileError("'" + manifestPath.string() + "': \"export_id\" is not a string");
+    return manifest["export_id"].get<std::string>();
+}
+
+struct LevelFile {
+    openvdb::GridPtrVec grids;
+    openvdb::MetaMap::Ptr meta;
+};
+
+LevelFile readGrids(const std::string& path) {
     if (!fs::is_regular_file(path)) throw FileError("'" + path + "' is missing from the export");
     probeVdbReadable(path);
     try {
         openvdb::io::File file(path);
         file.open(false);
-        openvdb::GridPtrVec grids = *file.getGrids();
+        LevelFile contents{*file.getGrids(), file.getMetadata()};
         file.close();
-        return grids;
+        return contents;
     } catch (const openvdb::Exception& e) {
         throw FileError("'" + path + "' is not a readable VDB file (" + e.what() + ")");
     }
+}
+
+// A file that carries another export's id does not belong with this manifest (a program that
+// drops file metadata on saving leaves no id, and is not blamed).
+void requireSameExport(const openvdb::MetaMap& meta, const std::string& exportId, const std::string& path,
+                       const fs::path& manifestPath) {
+    const auto id = meta.getMetadata<openvdb::StringMetadata>("lighthouse_export_id");
+    if (exportId.empty() || !id || id->value() == exportId) return;
+    throw FileError("'" + path + "' belongs to another export than '" + manifestPath.string() + "' (export id " +
+                    id->value() + ", the manifest's " + exportId +
+                    "): put back the files that were exported together, or export again");
 }
 
 template <typename GridT>
@@ -105,8 +130,40 @@ struct LevelRead {
     std::string path;
 };
 
-LevelRead readLevel(const std::string& path, const DccConvention& conv, std::vector<std::string>& warnings) {
-    const openvdb::GridPtrVec grids = readGrids(path);
+// Where a level's radiance comes from: the emission grid(s) (colour = emission / density) or
+// the colour grid. See dcc_import.h.
+struct RadianceChoice {
+    bool fromEmission = true;
+    std::string note, warning;  // for the report, "" when there is nothing to say
+};
+
+RadianceChoice chooseRadiance(const std::string& path, int k, const DccConvention& conv,
+                              const openvdb::FloatGrid& density, const openvdb::Vec3SGrid::Ptr& emission,
+                              const openvdb::GridPtrVec& emissionGrids, const openvdb::Vec3SGrid::Ptr& color,
+                              const LevelChecksums* checksums) {
+    if (!emission) return {false, "", ""};
+    if (!color || !checksums) return {};
+    bool emissionEdited = false;
+    for (const auto& g : emissionGrids) emissionEdited |= gridEdited(*checksums, *g);
+    const std::string level = " (level " + std::to_string(k) + ")";
+    const std::string e = "'" + emission->getName() + "'", c = "'" + conv.colorGrid + "'";
+    if (!gridEdited(*checksums, *color)) return {};
+    if (!emissionEdited)
+        return {false, "'" + path + "'" + level + ": " + c + " was edited, " + e + " was not: radiance from " + c, ""};
+    const std::size_t disagree = disagreeingVoxels(density, *emission, *color);
+    if (disagree == 0) return {};
+    return {true, "",
+            "'" + path + "'" + level + ": both " + c + " and " + e + " were edited, and they disagree in " +
+                std::to_string(disagree) + " voxel(s) (emission != density x " + conv.colorGrid +
+                "); radiance from " + e + ", what the renderer showed: make them agree, or undo one edit"};
+}
+
+LevelRead readLevel(const std::string& path, int k, const DccConvention& conv, const LevelChecksums* checksums,
+                    const std::string& exportId, const fs::path& manifestPath, std::vector<std::string>& warnings,
+                    std::vector<std::string>& notes) {
+    const LevelFile file = readGrids(path);
+    requireSameExport(*file.meta, exportId, path, manifestPath);
+    const openvdb::GridPtrVec& grids = file.grids;
     auto density = findGrid<openvdb::FloatGrid>(grids, kDccDensityGrid, path, "a FloatGrid (extinction density)", true);
     auto emission = findGrid<openvdb::Vec3SGrid>(grids, kDccEmissionGrid, path, "a Vec3SGrid (sigma * radiance)", false);
     auto color = findGrid<openvdb::Vec3SGrid>(grids, conv.colorGrid, path, "a Vec3SGrid (linear radiance)", false);
@@ -115,9 +172,12 @@ LevelRead readLevel(const std::string& path, const DccConvention& conv, std::vec
     for (int c = 0; c < 3; ++c)
         channel[c] = findGrid<openvdb::FloatGrid>(grids, kDccEmissionChannelGrids[c], path,
                                                   "a FloatGrid (sigma * radiance, one channel)", false);
+    openvdb::GridPtrVec emissionGrids;  // as read, for their checksums
+    if (emission) emissionGrids.push_back(emission);
     if (channel[0] || channel[1] || channel[2]) {
         if (!(channel[0] && channel[1] && channel[2]))
             throw FileError("'" + path + "' has only some of emission_r, emission_g, emission_b");
+        emissionGrids.assign(channel, channel + 3);
         emission = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
         emission->setName("emission_r/g/b");
         for (int c = 0; c < 3; ++c) {
@@ -136,11 +196,15 @@ LevelRead readLevel(const std::string& path, const DccConvention& conv, std::vec
     }
     if (!emission && !color)
         throw FileError("'" + path + "' has neither an '" + kDccEmissionGrid + "' nor a '" + conv.colorGrid + "' grid");
-    auto radianceSource = emission ? emission : color;
+    density->tree().voxelizeActiveTiles();
+    const RadianceChoice choice = chooseRadiance(path, k, conv, *density, emission, emissionGrids, color, checksums);
+    if (!choice.note.empty()) notes.push_back(choice.note);
+    if (!choice.warning.empty()) warnings.push_back(choice.warning);
+    const bool premultiplied = choice.fromEmission;
+    auto radianceSource = premultiplied ? emission : color;
     if (radianceSource->transform() != density->transform())
         throw FileError("'" + path + "': grids 'density' and '" + radianceSource->getName() +
                         "' have different transforms; resample one onto the other");
-    density->tree().voxelizeActiveTiles();
     radianceSource->tree().voxelizeActiveTiles();
 
     VolumeLevel level;
@@ -155,8 +219,8 @@ LevelRead readLevel(const std::string& path, const DccConvention& conv, std::vec
         fixedValues += sanitise(sigma, kOpaqueDensity);
         if (!(sigma > 0.f)) continue;
         openvdb::Vec3s rgb = src.getValue(it.getCoord());
-        for (int k = 0; k < 3; ++k) fixedValues += sanitise(rgb[k], emission ? kMaxRadiance * sigma : kMaxRadiance);
-        if (emission) rgb = rgb / sigma;
+        for (int ch = 0; ch < 3; ++ch) fixedValues += sanitise(rgb[ch], premultiplied ? kMaxRadiance * sigma : kMaxRadiance);
+        if (premultiplied) rgb = rgb / sigma;
         d.setValueOn(it.getCoord(), sigma);
         c.setValueOn(it.getCoord(), rgb);
     }
@@ -184,25 +248,52 @@ LevelRead readLevel(const std::string& path, const DccConvention& conv, std::vec
     return {level, path};
 }
 
+// The export's MPI (dcc_export.h): planes and the camera in lighthouse's frame; the planes'
+// transforms, in the program's axes, are not needed to rebuild it.
+Mpi readMpi(const std::string& path, const std::string& exportId, const fs::path& manifestPath) {
+    const LevelFile file = readGrids(path);
+    requireSameExport(*file.meta, exportId, path, manifestPath);
+    const auto camera = file.meta->getMetadata<openvdb::StringMetadata>("lighthouse_mpi_camera");
+    if (!camera) throw FileError("'" + path + "' holds no MPI (no 'lighthouse_mpi_camera' metadata)");
+    return mpiFromGrids(file.grids, cameraFromJson(camera->value(), path), "'" + path + "'");
+}
+
+// A file the manifest names, as a path inside the export directory.
+fs::path fileInExport(const nlohmann::json& entry, const fs::path& dir, const char* what) {
+    const fs::path manifestPath = dir / kDccManifestName;
+    if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string())
+        throw FileError("'" + manifestPath.string() + "': " + what + " entry has no \"file\"");
+    const std::string file = entry["file"].get<std::string>();
+    if (file.find('/') != std::string::npos || file == ".." || file == "." || file.empty())
+        throw FileError("'" + manifestPath.string() + "': file '" + file +
+                        "' must be a plain name inside the export directory");
+    return dir / file;
+}
+
 }  // namespace
 
-LightingVolume importFromDcc(const std::string& dirText, Dcc dcc, std::vector<std::string>* warningsOut) {
+LightingVolume importFromDcc(const std::string& dirText, Dcc dcc, DccImportReport* reportOut) {
     static std::once_flag once;
     std::call_once(once, [] { openvdb::initialize(); });
-    std::vector<std::string> warnings;
+    DccImportReport report;
+    std::vector<std::string>& warnings = report.warnings;
     const DccConvention conv = dccConvention(dcc);
     const fs::path dir(dirText);
+    const fs::path manifestPath = dir / kDccManifestName;
     const nlohmann::json manifest = readManifest(dir, conv);
+    const std::string exportId = manifestExportId(manifest, manifestPath);
+    const auto checksums = readManifestChecksums(manifest, manifestPath.string());
+    if (!checksums)
+        warnings.push_back("'" + manifestPath.string() +
+                           "' has no grid checksums (an export by an older lighthouse, or a hand-made manifest): "
+                           "the radiance comes from the emission grid(s) wherever they exist, so an edit to '" +
+                           conv.colorGrid + "' alone is ignored; export again to have either edit honoured");
 
     std::vector<LevelRead> reads;
-    for (const auto& entry : manifest["levels"]) {
-        if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string())
-            throw FileError("'" + (dir / kDccManifestName).string() + "': a level entry has no \"file\"");
-        const std::string file = entry["file"].get<std::string>();
-        if (file.find('/') != std::string::npos || file == ".." || file.empty())
-            throw FileError("'" + (dir / kDccManifestName).string() + "': level file '" + file +
-                            "' must be a plain name inside the export directory");
-        reads.push_back(readLevel((dir / file).string(), conv, warnings));
+    for (std::size_t k = 0; k < manifest["levels"].size(); ++k) {
+        const fs::path path = fileInExport(manifest["levels"][k], dir, "a level");
+        reads.push_back(readLevel(path.string(), int(k), conv, checksums ? &(*checksums)[k] : nullptr, exportId,
+                                  manifestPath, warnings, report.notes));
     }
     LightingVolume volume;
     for (auto& r : reads) volume.levels.push_back(r.level);
@@ -269,8 +360,13 @@ LightingVolume importFromDcc(const std::string& dirText, Dcc dcc, std::vector<st
     }
     if (manifest.contains("ref_camera") && manifest["ref_camera"].is_object())
         volume.refCamera = cameraFromJson(manifest["ref_camera"].dump(), dirText + ": ref_camera");
+    if (manifest.contains("mpi")) {
+        const fs::path path = fileInExport(manifest["mpi"], dir, "the \"mpi\"");
+        report.mpi = readMpi(path.string(), exportId, manifestPath);
+        report.mpiFile = path.string();
+    }
     volume.validate();
-    if (warningsOut) warningsOut->insert(warningsOut->end(), warnings.begin(), warnings.end());
+    if (reportOut) *reportOut = std::move(report);
     return volume;
 }
 

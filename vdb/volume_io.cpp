@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 
 namespace lh {
 
@@ -213,9 +214,10 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
     return report;
 }
 
-LightingVolume loadVolume(const std::string& path, std::vector<std::string>* warnings,
-                          const VolumeLoadOptions& options) {
-    VdbContents contents = readVdb(path);
+namespace {
+
+LightingVolume volumeFromContents(const VdbContents& contents, const std::string& path,
+                                  std::vector<std::string>* warnings, const VolumeLoadOptions& options) {
     std::map<std::string, openvdb::GridBase::Ptr> byName;
     for (const auto& g : contents.grids) byName[g->getName()] = g;
 
@@ -280,11 +282,30 @@ LightingVolume loadVolume(const std::string& path, std::vector<std::string>* war
     return volume;
 }
 
-Mpi loadMpi(const std::string& path) {
-    VdbContents contents = readVdb(path);
+// The MPI of a file, or nullopt when it holds none (no 'lighthouse_mpi_camera' metadata).
+std::optional<Mpi> mpiFromContents(const VdbContents& contents, const std::string& path) {
     auto cam = contents.meta->getMetadata<openvdb::StringMetadata>("lighthouse_mpi_camera");
-    if (!cam) throw FileError("'" + path + "': holds no MPI (no 'lighthouse_mpi_camera' metadata)");
+    if (!cam) return std::nullopt;
     return mpiFromGrids(contents.grids, cameraFromJson(cam->value(), path), path);
+}
+
+}  // namespace
+
+LightingVolume loadVolume(const std::string& path, std::vector<std::string>* warnings,
+                          const VolumeLoadOptions& options) {
+    return volumeFromContents(readVdb(path), path, warnings, options);
+}
+
+VolumeFile loadVolumeFile(const std::string& path, std::vector<std::string>* warnings,
+                          const VolumeLoadOptions& options) {
+    const VdbContents contents = readVdb(path);
+    return {volumeFromContents(contents, path, warnings, options), mpiFromContents(contents, path)};
+}
+
+Mpi loadMpi(const std::string& path) {
+    std::optional<Mpi> mpi = mpiFromContents(readVdb(path), path);
+    if (!mpi) throw FileError("'" + path + "': holds no MPI (no 'lighthouse_mpi_camera' metadata)");
+    return *mpi;
 }
 
 }  // namespace lh

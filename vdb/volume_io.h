@@ -18,6 +18,7 @@
 #include "vdb/mpi.h"
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,14 @@ std::string halfClampWarning(const VolumeSaveReport& report);
 // the file is not a VDB, has no density/colour pair, has wrong grid types or non-affine
 // transforms, or (with Reject) holds NaN/Inf. `warnings`, if given, receives what was sanitised.
 LightingVolume loadVolume(const std::string& path, std::vector<std::string>* warnings = nullptr,
+                          const VolumeLoadOptions& options = {});
+
+// A file's lighting volume and, when it holds one (a predicted volume), its MPI, from one read.
+struct VolumeFile {
+    LightingVolume volume;
+    std::optional<Mpi> mpi;
+};
+VolumeFile loadVolumeFile(const std::string& path, std::vector<std::string>* warnings = nullptr,
                           const VolumeLoadOptions& options = {});
 
 // Loads the MPI stored in a file written by saveVdb.

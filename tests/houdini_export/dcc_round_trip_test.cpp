@@ -170,9 +170,11 @@ TEST(DccImport, RoundTripRendersLikeTheOriginal) {
     for (Dcc dcc : {Dcc::Blender, Dcc::Houdini}) {
         const fs::path dir = freshDir("round_trip_" + dccConvention(dcc).name);
         exportForDcc(volume, dir.string(), {dcc});
-        std::vector<std::string> warnings;
-        const LightingVolume back = importFromDcc(dir.string(), dcc, &warnings);
-        EXPECT_TRUE(warnings.empty()) << warnings.front();
+        DccImportReport report;
+        const LightingVolume back = importFromDcc(dir.string(), dcc, &report);
+        EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+        EXPECT_TRUE(report.notes.empty()) << report.notes.front();  // nothing was edited
+        EXPECT_FALSE(report.mpi.has_value());
         ASSERT_EQ(back.levels.size(), 3u);
         ASSERT_TRUE(back.layout.has_value());  // still the nested layout
         EXPECT_EQ(*back.layout, *volume.layout);

@@ -242,5 +242,21 @@ TEST(VolumeIo, VolumeAndMpiShareOneFile) {
     EXPECT_THROW(loadMpi(path), FileError);
 }
 
+// One read gives the volume and, only when the file holds one, the MPI (export passes it on).
+TEST(VolumeIo, LoadVolumeFileGivesTheMpiWhenThereIsOne) {
+    LightingVolume v = makeExampleVolume(2, 8);
+    Mpi mpi = Mpi::create(exampleCameras().ref, 1.0, 7.0, 3);
+    mpi.pixel(1, 7, 2)[0] = 0.25f;
+    const std::string path = tempPath("volume_file.vdb");
+    saveVdb(path, &v, &mpi);
+    VolumeFile both = loadVolumeFile(path);
+    EXPECT_EQ(both.volume.levels.size(), 2u);
+    ASSERT_TRUE(both.mpi.has_value());
+    EXPECT_EQ(both.mpi->planeCount(), 3);
+    EXPECT_EQ(both.mpi->pixel(1, 7, 2)[0], 0.25f);
+    saveVolume(path, v);
+    EXPECT_FALSE(loadVolumeFile(path).mpi.has_value());
+}
+
 }  // namespace
 }  // namespace lh
