@@ -222,6 +222,7 @@ LightingVolume volumeFromContents(const VdbContents& contents, const std::string
     for (const auto& g : contents.grids) byName[g->getName()] = g;
 
     LightingVolume volume;
+    std::vector<std::string> emptyDensity;  // density grids with neither voxels nor a domain
     for (const auto& [name, grid] : byName) {
         std::string suffix;
         if (!densitySuffix(name, suffix)) continue;
@@ -257,11 +258,16 @@ LightingVolume volumeFromContents(const VdbContents& contents, const std::string
         level.domain = storedDomain(*density);
         if (level.domain.empty()) level.domain = density->evalActiveVoxelBoundingBox();
         if (level.domain.empty()) {
+            emptyDensity.push_back(name);
             if (warnings) warnings->push_back("'" + path + "': grid '" + name + "' is empty; ignored");
             continue;
         }
         volume.levels.push_back(level);
     }
+    if (volume.levels.empty() && !emptyDensity.empty())
+        throw FileError("'" + path + "': density grid '" + emptyDensity.front() +
+                        "' is empty (no active voxels, and no stored domain to give the level its extent), "
+                        "so the file holds no volume to render");
     if (volume.levels.empty()) {
         bool anyColor = false;
         for (const auto& [name, grid] : byName) anyColor |= name.rfind("color", 0) == 0;

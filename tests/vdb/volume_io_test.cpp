@@ -142,6 +142,35 @@ TEST(VolumeIo, MissingColorGridNamesTheGrid) {
     expectFileError(path, "color");
 }
 
+// An empty density grid is reported as empty, not as missing. In our own files the level's
+// domain is stored, so an empty room still loads, with no voxels.
+TEST(VolumeIo, AnEmptyDensityGridIsEmptyNotMissing) {
+    const std::string path = tempPath("empty_density.vdb");
+    auto d = openvdb::FloatGrid::create(0.f);
+    d->setName("density");
+    auto c = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    c->setName("color");
+    writeGrids(path, {d, c});
+    expectFileError(path, "density grid 'density' is empty");
+    try {
+        loadVolume(path);
+    } catch (const FileError& e) {
+        EXPECT_EQ(std::string(e.what()).find("no FloatGrid"), std::string::npos) << e.what();
+    }
+
+    const std::string noDensity = tempPath("no_density.vdb");
+    writeGrids(noDensity, {c});
+    expectFileError(noDensity, "no FloatGrid 'density'");
+
+    LightingVolume room = makeExampleVolume(2, 8);
+    for (auto& level : room.levels) level.density->clear();
+    const std::string ours = tempPath("empty_room.vdb");
+    saveVolume(ours, room);
+    const LightingVolume loaded = loadVolume(ours);
+    ASSERT_EQ(loaded.levels.size(), 2u);
+    EXPECT_EQ(loaded.levels[0].density->activeVoxelCount(), 0u);
+}
+
 TEST(VolumeIo, WrongGridTypeNamesGridAndType) {
     const std::string path = tempPath("wrong_type.vdb");
     auto d = openvdb::Vec3SGrid::create();
