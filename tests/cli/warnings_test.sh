@@ -44,7 +44,7 @@ echo "ok envmap_outside_every_level_warns"
 "$lh" make-example --levels 2 --res 16 --cameras cams.json -o room_cam.vdb >/dev/null 2>&1 ||
     fail "make-example --cameras"
 "$lh" render-view room_cam.vdb --cameras cams.json -o photo.png >/dev/null 2>&1 || fail "render-view"
-"$lh" insert --volume room_cam.vdb --image photo.png --cameras cams.json --samples 1 --no-shadows \
+"$lh" insert room_cam.vdb --image photo.png --cameras cams.json --samples 1 --no-shadows \
     --object sphere --at -0.5,0,2 --object sphere --at 0,0,-2 --object cube --at 1,0.5,30 \
     -o inserted.png </dev/null >out.txt 2>err.txt || fail "insert: $(cat err.txt)"
 grep -q "^warning: object 2 (sphere at 0,0,-2) is not visible in the image: it is behind the camera" err.txt ||
