@@ -76,8 +76,10 @@ TEST(Envmap, FastSettingsAgreeWithReference) {
         }
         const double rmse = std::sqrt(err / a.pixels.size());
         mean /= a.pixels.size();
-        // Half-voxel midpoint steps on a box-filtered room: RMSE within 2% of mean radiance.
-        EXPECT_LT(rmse, 0.02 * mean) << at;
+        // The default quadrature against the reference: within the RMSE 1e-3 that bench-envmap
+        // holds every fast setting to (measured 5.6e-4 at most here, 0.11% of the mean).
+        EXPECT_LT(rmse, 1e-3) << at;
+        EXPECT_LT(rmse, 2e-3 * mean) << at;
         EXPECT_GT(mean, 0.05);
     }
 }
