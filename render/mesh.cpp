@@ -6,12 +6,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 
 namespace lh {
 
 namespace {
+
+// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "1e999") as 0 or as an
+// infinity without a word, which would move the vertex silently. Every "v" line's first
+// three coordinates must be finite numbers.
+void requireFiniteVertices(const std::string& path) {
+    std::ifstream file(path);
+    std::string line;
+    for (long number = 1; std::getline(file, line); ++number) {
+        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+        std::istringstream fields(line.substr(2));
+        std::string token;
+        for (int axis = 0; axis < 3 && fields >> token; ++axis) {
+            char* end = nullptr;
+            const double value = std::strtod(token.c_str(), &end);
+            if (end == token.c_str() || *end != '\0' || !std::isfinite(value))
+                throw FileError("mesh '" + path + "' line " + std::to_string(number) + ": vertex coordinate '" +
+                                token + "' is not a finite number");
+        }
+    }
+}
 
 TriangleMesh uvSphere(int around, int polar) {
     TriangleMesh m;
@@ -144,6 +167,7 @@ TriangleMesh builtinMesh(const std::string& name) {
 
 TriangleMesh loadObj(const std::string& path) {
     if (!std::filesystem::exists(path)) throw FileError("mesh file '" + path + "' does not exist");
+    requireFiniteVertices(path);
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     tinyobj::ObjReader reader;

@@ -1,5 +1,7 @@
 #include "render/ray_marcher.h"
 
+#include "core/check.h"
+
 #include "core/cpu_dispatch.h"
 #include "core/errors.h"
 #include "core/fast_exp.h"
@@ -200,6 +202,7 @@ bool integrateCellPiece(const Sampler& sample, double ta, double h, const CellQu
             if (misplacesTooMuch) {
                 const double half = 0.5 * part.length;
                 ++part.depth;
+                LH_DCHECK(waiting < kMaxHalvings);
                 pending[waiting++] = {part.start + half, half, part.depth};  // back half, later
                 part.length = half;                                           // front half, now
                 continue;
@@ -322,6 +325,7 @@ RayResult marchPieces(const RenderVolume& volume, const RenderVolume::RayOrigin&
     RayResult result;
     Piece pieces[RenderVolume::kMaxPieces];
     const int count = volume.partitionRay(origin, dir, pieces);
+    LH_DCHECK(count >= 0 && count <= RenderVolume::kMaxPieces);
     const double typical = volume.typicalRadiance();
     const CellQuadrature cq{options, typical > 0.0 ? 1.0 / typical : 0.0};
     for (int p = 0; p < count; ++p) {

@@ -320,6 +320,9 @@ int RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece*
     if (hit > 0) pieces[count++] = {lo[hit - 1], hi[hit - 1], hit - 1};
     for (int k = hit - 2; k >= 0; --k)
         if (hi[k] > hi[k + 1]) pieces[count++] = {hi[k + 1], hi[k], k};
+    // At most two pieces per coarser level and one for the finest, in ray order.
+    LH_DCHECK(count <= 2 * n - 1 && count <= kMaxPieces);
+    for (int p = 1; p < count; ++p) LH_DCHECK(pieces[p].t0 >= pieces[p - 1].t1 - 1e-9 * (1 + std::abs(pieces[p].t0)));
     return count;
 }
 

@@ -13,6 +13,8 @@
 // Inactive voxels count as empty space.
 #pragma once
 
+#include "core/check.h"
+
 #include "vdb/lighting_volume.h"
 
 #include <algorithm>
@@ -134,6 +136,7 @@ public:
     // True if the brick cell at brick coordinates (bx, by, bz) holds density.
     bool brickOccupied(int bx, int by, int bz) const;
     int brickIndex(int bx, int by, int bz) const {
+        LH_DCHECK(bx >= 0 && bx < brickCount[0] && by >= 0 && by < brickCount[1] && bz >= 0 && bz < brickCount[2]);
         return brickTable[(std::size_t(bz) * brickCount[1] + by) * brickCount[0] + bx];
     }
 

@@ -139,10 +139,15 @@ TEST(Insertion, SpheresOnEitherSideOfALampReflectItInOppositeDirections) {
     EXPECT_LT(reflectionOffset(volume, +1.2), -2.0);
 }
 
-TEST(Insertion, ObjectBehindASceneSurfaceIsHidden) {
-    const RenderVolume volume(test::volumeOf({test::makeLevel(
+// An opaque grey wall across the view, 2 to 2.5 m in front of a camera at the origin.
+RenderVolume wallAtTwoMetres() {
+    return RenderVolume(test::volumeOf({test::makeLevel(
         0.05, Vec3d(-3), openvdb::Coord(120),
         test::boxField(Vec3d(-3, -3, 2.0), Vec3d(3, 3, 2.5), {80.f, openvdb::Vec3s(0.5f)}))}));
+}
+
+TEST(Insertion, ObjectBehindASceneSurfaceIsHidden) {
+    const RenderVolume volume = wallAtTwoMetres();
     const PinholeCamera cam = camera(Vec3d(0.0));
     const ImageRGB photo = constantImage(64, 0.25f);
     const Material white = Material::parse("diffuse:1,1,1");
@@ -155,9 +160,7 @@ TEST(Insertion, ObjectBehindASceneSurfaceIsHidden) {
 
 // Each way an object can miss the picture is told apart: the reason names it.
 TEST(Insertion, AnObjectTheImageDoesNotShowIsReportedWithItsReason) {
-    const RenderVolume volume(test::volumeOf({test::makeLevel(
-        0.05, Vec3d(-3), openvdb::Coord(120),
-        test::boxField(Vec3d(-3, -3, 2.0), Vec3d(3, 3, 2.5), {80.f, openvdb::Vec3s(0.5f)}))}));
+    const RenderVolume volume = wallAtTwoMetres();
     const PinholeCamera cam = camera(Vec3d(0.0));
     const ImageRGB photo = constantImage(64, 0.25f);
     const Material white = Material::parse("diffuse:1,1,1");
@@ -201,6 +204,21 @@ TEST(Insertion, MaterialsAndMeshesAreChecked) {
     for (const Vec3d& p : tetra.positions) radius = std::max(radius, p.length());
     EXPECT_NEAR(radius, 1.0, 1e-12);  // normalised
     for (const std::string name : {"sphere", "cube", "torus", "cylinder"}) EXPECT_GT(builtinMesh(name).triangleCount(), 10u);
+}
+
+// tinyobjloader would read these coordinates as 0 or infinity without a word.
+TEST(Insertion, AMeshWithANonFiniteVertexIsRefusedWithItsLine) {
+    for (const char* bad : {"nan", "inf", "-inf", "1e999", "x"}) {
+        const auto path = std::filesystem::temp_directory_path() / "lh_bad_vertex.obj";
+        std::ofstream(path) << "# a triangle\nv 0 0 0\nv 1 0 0\nv 0 " << bad << " 0\nf 1 2 3\n";
+        try {
+            loadMesh(path.string());
+            ADD_FAILURE() << "no error for a vertex coordinate '" << bad << "'";
+        } catch (const FileError& e) {
+            EXPECT_NE(std::string(e.what()).find("line 4: vertex coordinate '" + std::string(bad) + "' is not a finite number"),
+                      std::string::npos) << e.what();
+        }
+    }
 }
 
 }  // namespace
