@@ -3,7 +3,6 @@
 #include "core/errors.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -26,16 +25,8 @@ AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPa
                         "' does not exist");
     if (fs::is_directory(p))
         throw FileError("cannot write '" + finalPath_ + "': it is a directory");
-    // Unique per process and per call: concurrent writers never share a temporary.
-    static std::atomic<unsigned> counter{0};
-    std::string ext = p.extension().string();  // keep the extension: some writers check it
-    const std::string tag = ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-    std::string stem = p.stem().string();
-    // A file name may hold at most kMaxFileNameBytes bytes: shorten the stem of the temporary
-    // so that an output name near the limit still gets one.
-    const std::size_t fixed = 1 + tag.size() + ext.size();
-    if (fixed + stem.size() > kMaxFileNameBytes) stem.resize(kMaxFileNameBytes > fixed ? kMaxFileNameBytes - fixed : 0);
-    tempPath_ = (dir / ("." + stem + tag + ext)).string();
+    removeAbandonedTemporaries(dir.string());
+    tempPath_ = temporaryBeside(finalPath_, "tmp");
     // Created now, so that an unwritable folder is reported as such rather than as whatever
     // the image or VDB encoder says when it cannot open its file.
     const int fd = ::open(tempPath_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);

@@ -1,20 +1,21 @@
 // Write-to-temporary-then-rename, so that a failed or interrupted write never leaves a
-// half-written output under the final name.
+// half-written output under the final name. A process killed mid-write leaves its temporary
+// (core/temporary_files.h); the next output written into that folder removes it.
 #pragma once
 
-#include <cstddef>
+#include "core/temporary_files.h"
+
 #include <string>
 
 namespace lh {
 
-// NAME_MAX of Linux file systems (ext4, xfs, tmpfs): bytes in one path component.
-constexpr std::size_t kMaxFileNameBytes = 255;
-
 class AtomicOutput {
 public:
     // Creates an empty temporary file next to `finalPath` (same directory, so rename is
-    // atomic). Throws FileError if the directory does not exist or cannot be written, naming
-    // the reason (permission denied, read-only file system, ...) before any work is done.
+    // atomic), after removing the temporaries that killed processes left in that directory
+    // (removeAbandonedTemporaries). Throws FileError if the directory does not exist or
+    // cannot be written, naming the reason (permission denied, read-only file system, ...)
+    // before any work is done.
     explicit AtomicOutput(std::string finalPath);
     ~AtomicOutput();  // removes the temporary file unless commit() succeeded
     AtomicOutput(const AtomicOutput&) = delete;
