@@ -199,9 +199,9 @@ void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision) 
     } else {
         net->save(archive);
     }
-    const std::string temporary = path + ".partial";
-    archive.save_to(temporary);
-    std::filesystem::rename(temporary, path);
+    AtomicOutput out(path);  // a kill mid-write leaves the previous file whole
+    archive.save_to(out.tempPath());
+    out.commit();
 }
 
 LighthouseNet loadModel(const std::string& path, const torch::Device& device) {

@@ -104,9 +104,11 @@ void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
     archive.write("config", c10::IValue(s.net->config.toJson()));
     const fs::path target(o.checkpointPath());
     if (!target.parent_path().empty()) fs::create_directories(target.parent_path());
-    const std::string temporary = o.checkpointPath() + ".partial";
-    archive.save_to(temporary);
-    fs::rename(temporary, o.checkpointPath());
+    // Under a temporary name, then renamed: a kill at any moment leaves the last complete
+    // checkpoint, and the next run removes the temporary (core/atomic_file.h).
+    AtomicOutput out(o.checkpointPath());
+    archive.save_to(out.tempPath());
+    out.commit();
     saveModel(s.net, o.out, o.halfModel);
 }
 
