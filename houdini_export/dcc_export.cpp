@@ -9,11 +9,14 @@
 #include <openvdb/io/File.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
-#include <cstdio>
+#include <cstdio>  // renameat2 (glibc; g++ defines _GNU_SOURCE)
+#include <fcntl.h>  // AT_FDCWD
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <system_error>
 
 namespace fs = std::filesystem;
 
@@ -180,15 +183,35 @@ bool isExportDirectory(const fs::path& dir) {
     return fs::is_directory(dir) && fs::is_regular_file(dir / kDccManifestName);
 }
 
-// A fresh, unused directory name beside `finalDir`.
-fs::path temporaryDirectoryBeside(const fs::path& finalDir, const char* tag) {
-    std::random_device rd;
+// A fresh, unused directory name beside `finalDir` (core/temporary_files.h), so that the next
+// export removes it if this process is killed before it is renamed or removed.
+fs::path temporaryDirectoryBeside(const fs::path& finalDir, const char* kind) {
     for (int attempt = 0; attempt < 100; ++attempt) {
-        fs::path p = finalDir.parent_path() /
-                     ("." + finalDir.filename().string() + "." + tag + std::to_string(rd() % 1000000));
+        const fs::path p = temporaryBeside(finalDir.string(), kind, /*keepExtension=*/false);
         if (!fs::exists(p)) return p;
     }
     throw FileError("cannot find a free temporary name beside '" + finalDir.string() + "'");
+}
+
+// Puts the complete export `fresh` in place of the export `finalDir`, then removes the old
+// one. Where the file system swaps two names in one step (renameat2's RENAME_EXCHANGE: ext4,
+// xfs, btrfs, tmpfs), a kill at any moment leaves a whole export under the final name, the old
+// or the new. Elsewhere the old export is first renamed aside, so that a kill between the two
+// renames leaves no export under the final name (both stay whole, under temporary names).
+void replaceExport(const fs::path& fresh, const fs::path& finalDir) {
+    if (::renameat2(AT_FDCWD, fresh.c_str(), AT_FDCWD, finalDir.c_str(), RENAME_EXCHANGE) == 0) {
+        std::error_code ignored;
+        fs::remove_all(fresh, ignored);  // it now holds the old export
+        return;
+    }
+    if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
+        throw fs::filesystem_error("cannot swap in the new export", fresh, finalDir,
+                                   std::error_code(errno, std::generic_category()));
+    const fs::path old = temporaryDirectoryBeside(finalDir, "old");
+    fs::rename(finalDir, old);
+    fs::rename(fresh, finalDir);
+    std::error_code ignored;
+    fs::remove_all(old, ignored);
 }
 
 }  // namespace
@@ -214,6 +237,7 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
 
     DccExportReport report;
     const std::vector<VolumeLevel> shells = makeShells(volume);
+    removeAbandonedTemporaries(parent.string());  // of exports killed before they were renamed
     const fs::path tmp = temporaryDirectoryBeside(parent / finalDir.filename(), "tmp");
     nlohmann::json manifest;
     const std::string exportId = newExportId();
@@ -265,14 +289,10 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
         std::ofstream(tmp / kDccManifestName) << manifest.dump(2) << "\n";
         if (!fs::is_regular_file(tmp / kDccManifestName) || fs::file_size(tmp / kDccManifestName) == 0)
             throw FileError("cannot write '" + (finalDir / kDccManifestName).string() + "'");
-        // Swap in: the old export (if any) moves aside first, then goes.
-        fs::path old;
-        if (fs::exists(finalDir)) {
-            old = temporaryDirectoryBeside(parent / finalDir.filename(), "old");
-            fs::rename(finalDir, old);
-        }
-        fs::rename(tmp, finalDir);
-        if (!old.empty()) fs::remove_all(old);
+        if (fs::exists(finalDir))
+            replaceExport(tmp, finalDir);
+        else
+            fs::rename(tmp, finalDir);
     } catch (const fs::filesystem_error& e) {
         std::error_code ignored;
         fs::remove_all(tmp, ignored);

@@ -55,8 +55,10 @@ struct DccExportReport {
 };
 
 // Writes the export directory `outDir` atomically: everything goes to a temporary directory
-// beside it, which replaces `outDir` only once complete. An existing `outDir` is replaced only
-// if it is itself an export (holds a manifest.json); otherwise FileError. Throws InputError
+// beside it, which replaces `outDir` only once complete, in one step where the file system
+// allows (a process killed at any moment leaves the old export or the new one, whole). The
+// temporaries of an export that was killed are removed by the next one. An existing `outDir`
+// is replaced only if it is itself an export (holds a manifest.json); otherwise FileError. Throws InputError
 // for an invalid volume. `mpi`, if given, is written too (mpi.vdb).
 DccExportReport exportForDcc(const LightingVolume& volume, const std::string& outDir,
                              const DccExportOptions& options = {}, const Mpi* mpi = nullptr);
