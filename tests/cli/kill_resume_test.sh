@@ -1,0 +1,184 @@
+#!/usr/bin/env bash
+# Commands that write several files, killed with SIGKILL at chosen moments and run again with
+# the same command line (docs/reliability.md#interruption):
+#   synth   killed in the middle of an example and just after one completed; the same command
+#           resumes, keeps the complete examples and ends with the files of an uninterrupted
+#           run, byte for byte;
+#   export  killed while its temporary directory is being filled, first with no export there,
+#           then while replacing one with --force, then at several fixed delays: the final name
+#           holds a whole export (the old or the new) or nothing, and the next export removes
+#           what the killed one left;
+#   train   killed after its first checkpoint, while a checkpoint is being written and while
+#           the model file is being written; the same command resumes from the last complete
+#           checkpoint and ends with the weights of an uninterrupted run; the checkpoint and
+#           the model load.
+# Every part ends with no temporary (a hidden file or folder) left in its output folder.
+#   kill_resume_test.sh LIGHTHOUSE WORKDIR synth|export|train
+set -u
+[ $# -eq 3 ] || { echo "usage: $0 LIGHTHOUSE WORKDIR synth|export|train" >&2; exit 2; }
+lh=$1
+work=$2
+part=$3
+rm -rf -- "$work" && mkdir -p -- "$work" && cd -- "$work" || exit 1
+failures=0
+fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+
+# start NAME ARGS...: lighthouse ARGS in the background, output in NAME.log; its pid in $pid.
+start() {
+    local name=$1
+    shift
+    "$lh" "$@" </dev/null >"$name.log" 2>&1 &
+    pid=$!
+}
+# kill_when NAME PATTERN: SIGKILL the process $pid as soon as a path matching the shell
+# PATTERN exists (polled every 2 ms); "PID" in PATTERN stands for $pid, so that a temporary
+# an earlier, killed run left cannot match. Fails the test if the process ends first.
+kill_when() {
+    local name=$1 pattern=${2//PID/$pid}
+    while kill -0 "$pid" 2>/dev/null; do
+        if compgen -G "$pattern" >/dev/null; then
+            kill -KILL "$pid"
+            wait "$pid" 2>/dev/null
+            echo "killed $name when $(compgen -G "$pattern" | head -1) existed"
+            return 0
+        fi
+        sleep 0.002
+    done
+    wait "$pid"
+    fail "$name ended (exit $?) before '$pattern' appeared, so it was not killed there: $(tail -3 "$name.log")"
+    return 1
+}
+# kill_after NAME SECONDS: SIGKILL the process $pid after SECONDS, if it still runs.
+kill_after() {
+    sleep "$2"
+    if kill -KILL "$pid" 2>/dev/null; then echo "killed $1 after $2 s"; fi
+    wait "$pid" 2>/dev/null
+    return 0
+}
+# run NAME ARGS...: lighthouse ARGS in the foreground, output in NAME.log; must succeed.
+run() {
+    local name=$1
+    shift
+    "$lh" "$@" </dev/null >"$name.log" 2>&1 || { fail "$name: exit $?: $(tail -5 "$name.log")"; return 1; }
+}
+# no_temporaries DIR...: nothing hidden (a temporary file or folder) in DIR or below.
+no_temporaries() {
+    local left
+    left=$(find "$@" -mindepth 1 -name '.*' 2>/dev/null)
+    [ -z "$left" ] || fail "temporaries left behind: $left"
+}
+
+tiny=(--seed 5 --size 48x36 --envmap-size 32x16 --envmaps 1 --supersample 1)
+
+case $part in
+synth)
+    run whole synth "${tiny[@]}" --count 4 -o whole || exit 1
+    # Killed while an example after the first is being written (its folder's temporary name
+    # exists for some tens of milliseconds).
+    start cut1 synth "${tiny[@]}" --count 4 -o cut
+    kill_when cut1 "cut/.00000[123].partial"
+    [ -f cut/000000/scene.json ] || fail "the complete example 000000 is not under its name"
+    for p in cut/.*.partial; do
+        id=${p#cut/.}
+        [ -e "cut/${id%.partial}" ] && fail "the example being written appeared under its final name"
+    done
+    [ -e cut/manifest.json ] && fail "a killed synth wrote its manifest"
+    # Killed just after the next example is complete, then at a fixed delay.
+    start cut2 synth "${tiny[@]}" --count 4 -o cut
+    kill_when cut2 "cut/00000[23]/scene.json"
+    start cut3 synth "${tiny[@]}" --count 4 -o cut
+    kill_after cut3 0.3
+    run resumed synth "${tiny[@]}" --count 4 -o cut || exit 1
+    no_temporaries cut
+    for f in $(cd whole && find . -type f ! -name manifest.json | sort); do
+        cmp -s "whole/$f" "cut/$f" || fail "$f differs from the uninterrupted run's"
+    done
+    [ "$(cd cut && find . -type f | wc -l)" -eq "$(cd whole && find . -type f | wc -l)" ] ||
+        fail "the resumed set has other files than the uninterrupted one: $(diff <(cd whole && find . | sort) <(cd cut && find . | sort))"
+    # The manifest lists the same examples and seeds (timings and bake statistics aside).
+    keep='"(id|example_seed|scene_seed|count|first_index|split)"'
+    diff <(grep -E "$keep" whole/manifest.json) <(grep -E "$keep" cut/manifest.json) >/dev/null ||
+        fail "the manifests list other examples: $(diff <(grep -E "$keep" whole/manifest.json) <(grep -E "$keep" cut/manifest.json))"
+    [ "$(grep -c '"id"' cut/manifest.json)" -eq 4 ] || fail "the resumed manifest does not list 4 examples"
+    echo "ok synth_killed_and_resumed"
+    ;;
+
+export)
+    run volume make-example --levels 3 --res 128 -o room.vdb || exit 1
+    run other make-example --levels 2 --res 64 -o other.vdb || exit 1
+    # Killed while the first export is being written: nothing under the final name.
+    start exp1 export room.vdb --for blender -o exp
+    kill_when exp1 ".exp.tmpPID_*/level_*.vdb"
+    [ -e exp ] && fail "a killed export left something under its final name"
+    run exp1_again export room.vdb --for blender -o exp || exit 1
+    no_temporaries exp; [ -z "$(compgen -G '.exp.*')" ] || fail "left beside exp: $(compgen -G '.exp.*')"
+    run import1 import exp --from blender -o back1.vdb
+    # Killed while replacing it (--force): the old export stays, whole and unchanged.
+    cp -a exp exp_before
+    start exp2 export room.vdb --for blender --force -o exp
+    kill_when exp2 ".exp.tmpPID_*/level_*.vdb"
+    diff -r exp_before exp >/dev/null || fail "a killed export --force changed the export it was replacing"
+    # Killed at fixed delays: whatever the moment, the final name holds a whole export.
+    for delay in 0.05 0.1 0.2 0.3 0.35 0.4 0.45; do
+        start "exp_$delay" export room.vdb --for blender --force -o exp
+        kill_after "exp_$delay" "$delay"
+        if [ -f exp/manifest.json ]; then
+            run "import_$delay" import exp --from blender -o "back_$delay.vdb"
+        elif [ -e exp ]; then
+            fail "killed after $delay s: exp exists without its manifest.json"
+        fi
+    done
+    run exp3 export other.vdb --for blender --force -o exp || exit 1
+    [ -z "$(compgen -G '.exp.*')" ] || fail "left beside exp: $(compgen -G '.exp.*')"
+    no_temporaries exp
+    run import3 import exp --from blender -o back3.vdb && grep -q "2 level" import3.log ||
+        fail "the last export is not other.vdb's 2 levels: $(cat import3.log)"
+    echo "ok export_killed_and_rerun"
+    ;;
+
+train)
+    run data synth "${tiny[@]}" --count 3 -o syn || exit 1
+    # The small network, one thread (bit-reproducible), a checkpoint every iteration.
+    train=(--threads 1 train --data syn --config small --iterations 5 --validate-every 100 --validation-scenes 1
+           --checkpoint-every 1 --log-every 1)
+    run whole "${train[@]}" -o whole.pt || exit 1
+    start cut1 "${train[@]}" -o cut.pt
+    kill_when cut1 cut.pt.checkpoint
+    # Killed while a checkpoint is being written: the previous one stays, whole.
+    start cut2 "${train[@]}" -o cut.pt
+    kill_when cut2 ".cut.pt.tmpPID_*.checkpoint"
+    [ -f cut.pt.checkpoint ] || fail "killed mid-checkpoint: the previous checkpoint is gone"
+    [ -n "$(compgen -G ".cut.pt.tmp${pid}_*.checkpoint")" ] || fail "the killed checkpoint's temporary is not there"
+    grep -q "resuming from cut.pt.checkpoint at iteration [1-9]" cut2.log || fail "cut2 did not resume: $(cat cut2.log)"
+    # Killed while the model file is being written.
+    start cut3 "${train[@]}" -o cut.pt
+    kill_when cut3 ".cut.tmpPID_*.pt"
+    run resumed "${train[@]}" -o cut.pt || exit 1
+    grep -q "resuming from cut.pt.checkpoint at iteration [1-9]" resumed.log ||
+        fail "the last run did not resume: $(cat resumed.log)"
+    grep -q "^5," cut.pt.csv || fail "the log does not reach iteration 5: $(cat cut.pt.csv)"
+    no_temporaries .
+    # The weights equal the uninterrupted run's (each archive's members, whatever its folder name).
+    python3 - whole.pt cut.pt <<'EOF' || fail "the resumed model's weights differ from the uninterrupted run's"
+import sys, zipfile
+def members(path):
+    with zipfile.ZipFile(path) as z:
+        return {n.split("/", 1)[1]: z.read(n) for n in z.namelist() if "/data/" in n}
+a, b = members(sys.argv[1]), members(sys.argv[2])
+sys.exit(0 if a and a == b else 1)
+EOF
+    # The checkpoint loads (the same command resumes at the end) and so does the model.
+    run again "${train[@]}" -o cut.pt && grep -q "resuming from cut.pt.checkpoint at iteration 5" again.log ||
+        fail "the final checkpoint did not load: $(cat again.log)"
+    run predict predict --model cut.pt --ref syn/000000/ref.png --src syn/000000/src.png \
+        --cameras syn/000000/cameras.json -o predicted.vdb && [ -s predicted.vdb ] || fail "the model did not load"
+    no_temporaries .
+    echo "ok train_killed_and_resumed"
+    ;;
+*)
+    echo "unknown part '$part'" >&2
+    exit 2
+    ;;
+esac
+[ $failures -eq 0 ] || { echo "$failures check(s) failed"; exit 1; }
+echo "all cases passed"
