@@ -18,13 +18,15 @@ namespace {
 struct ImportOptions {
     std::string input, output, source;
     bool half = false;
+    bool strict = false;
 };
 
 void runImport(const ImportOptions& o) {
     const Dcc dcc = parseDcc(o.source, "--from");
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the export directory"}});
     DccImportReport report;
-    const LightingVolume volume = importFromDcc(o.input, dcc, &report);
+    const LightingVolume volume =
+        importFromDcc(o.input, dcc, &report, o.strict ? NonFinitePolicy::Reject : NonFinitePolicy::Sanitise);
     for (const auto& w : report.warnings) std::cerr << "warning: " << w << "\n";
     const Mpi* mpi = report.mpi ? &*report.mpi : nullptr;
     warnOfHalfClamping(saveVdb(o.output, &volume, mpi, VolumeSaveOptions{o.half}), "--half");
@@ -45,6 +47,7 @@ void addImportCommand(CLI::App& app) {
     cmd->add_option("--from", o->source, "Program it was exported for: blender or houdini")->required();
     cmd->add_option("-o,--output", o->output, "Lighting volume (.vdb)")->required();
     addHalfFlag(cmd, o->half);
+    addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runImport(*o); });
 }
 

@@ -103,11 +103,21 @@ typename GridT::Ptr findGrid(const openvdb::GridPtrVec& grids, const std::string
     return nullptr;
 }
 
-// NaN -> 0, +Inf -> big, negative -> 0; returns how many values changed.
-std::size_t sanitise(float& v, float big) {
-    if (std::isnan(v) || v < 0.f) return v = 0.f, 1;
-    if (std::isinf(v)) return v = big, 1;
-    return 0;
+// The NaN, +Inf and negative values met in one grid, counted as loadVolume counts them.
+struct BadValues {
+    std::size_t nan = 0, posInf = 0, negative = 0;
+    std::size_t total() const { return nan + posInf + negative; }
+    std::string text() const {
+        return std::to_string(nan) + " NaN, " + std::to_string(posInf) + " +Inf, " + std::to_string(negative) +
+               " negative value(s)";
+    }
+};
+
+// NaN -> 0, +Inf -> big, negative (-Inf too) -> 0, counted in `bad`.
+void sanitise(float& v, float big, BadValues& bad) {
+    if (std::isnan(v)) v = 0.f, ++bad.nan;
+    else if (v < 0.f) v = 0.f, ++bad.negative;
+    else if (std::isinf(v)) v = big, ++bad.posInf;
 }
 
 openvdb::CoordBBox storedDomain(const openvdb::GridBase& grid) {
@@ -159,8 +169,8 @@ RadianceChoice chooseRadiance(const std::string& path, int k, const DccConventio
 }
 
 LevelRead readLevel(const std::string& path, int k, const DccConvention& conv, const LevelChecksums* checksums,
-                    const std::string& exportId, const fs::path& manifestPath, std::vector<std::string>& warnings,
-                    std::vector<std::string>& notes) {
+                    const std::string& exportId, const fs::path& manifestPath, NonFinitePolicy policy,
+                    std::vector<std::string>& warnings, std::vector<std::string>& notes) {
     const LevelFile file = readGrids(path);
     requireSameExport(*file.meta, exportId, path, manifestPath);
     const openvdb::GridPtrVec& grids = file.grids;
@@ -213,13 +223,14 @@ LevelRead readLevel(const std::string& path, int k, const DccConvention& conv, c
     auto d = level.density->getAccessor();
     auto c = level.color->getAccessor();
     auto src = radianceSource->getConstAccessor();
-    std::size_t fixedValues = 0, emissionWithoutDensity = 0;
+    std::size_t emissionWithoutDensity = 0;
+    BadValues badDensity, badRadiance;
     for (auto it = density->cbeginValueOn(); it; ++it) {
         float sigma = *it;
-        fixedValues += sanitise(sigma, kOpaqueDensity);
+        sanitise(sigma, kOpaqueDensity, badDensity);
         if (!(sigma > 0.f)) continue;
         openvdb::Vec3s rgb = src.getValue(it.getCoord());
-        for (int ch = 0; ch < 3; ++ch) fixedValues += sanitise(rgb[ch], premultiplied ? kMaxRadiance * sigma : kMaxRadiance);
+        for (int ch = 0; ch < 3; ++ch) sanitise(rgb[ch], premultiplied ? kMaxRadiance * sigma : kMaxRadiance, badRadiance);
         if (premultiplied) rgb = rgb / sigma;
         d.setValueOn(it.getCoord(), sigma);
         c.setValueOn(it.getCoord(), rgb);
@@ -229,7 +240,11 @@ LevelRead readLevel(const std::string& path, int k, const DccConvention& conv, c
         const openvdb::Vec3s v = *it;
         if (!(dAcc.getValue(it.getCoord()) > 0.f) && (v[0] > 0 || v[1] > 0 || v[2] > 0)) ++emissionWithoutDensity;
     }
-    if (fixedValues)
+    if (policy == NonFinitePolicy::Reject)
+        for (const auto& [grid, bad] : {std::pair{density->getName(), badDensity},
+                                        std::pair{radianceSource->getName(), badRadiance}})
+            if (bad.total()) throw FileError("'" + path + "': grid '" + grid + "' holds " + bad.text());
+    if (const std::size_t fixedValues = badDensity.total() + badRadiance.total())
         warnings.push_back("'" + path + "': replaced " + std::to_string(fixedValues) +
                            " NaN/Inf/negative value(s) (NaN -> 0, +Inf -> opaque/max, negative -> 0)");
     if (emissionWithoutDensity)
@@ -272,7 +287,8 @@ fs::path fileInExport(const nlohmann::json& entry, const fs::path& dir, const ch
 
 }  // namespace
 
-LightingVolume importFromDcc(const std::string& dirText, Dcc dcc, DccImportReport* reportOut) {
+LightingVolume importFromDcc(const std::string& dirText, Dcc dcc, DccImportReport* reportOut,
+                             NonFinitePolicy nonFinite) {
     static std::once_flag once;
     std::call_once(once, [] { openvdb::initialize(); });
     DccImportReport report;
@@ -293,7 +309,7 @@ LightingVolume importFromDcc(const std::string& dirText, Dcc dcc, DccImportRepor
     for (std::size_t k = 0; k < manifest["levels"].size(); ++k) {
         const fs::path path = fileInExport(manifest["levels"][k], dir, "a level");
         reads.push_back(readLevel(path.string(), int(k), conv, checksums ? &(*checksums)[k] : nullptr, exportId,
-                                  manifestPath, warnings, report.notes));
+                                  manifestPath, nonFinite, warnings, report.notes));
     }
     LightingVolume volume;
     for (auto& r : reads) volume.levels.push_back(r.level);

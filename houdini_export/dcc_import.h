@@ -25,6 +25,7 @@
 #include "houdini_export/dcc_convention.h"
 #include "vdb/lighting_volume.h"
 #include "vdb/mpi.h"
+#include "vdb/volume_io.h"
 
 #include <optional>
 #include <string>
@@ -41,8 +42,10 @@ struct DccImportReport {
 
 // Throws FileError naming the file (and grid) if `dir` is not an export for `dcc`, the manifest
 // is malformed or belongs to other files (their export ids differ), a level file is missing or
-// unreadable, or grids have the wrong type or transform. NaN/Inf/negative values are replaced
-// (as loadVolume does) and reported in `warnings`.
-LightingVolume importFromDcc(const std::string& dir, Dcc dcc, DccImportReport* report = nullptr);
+// unreadable, or grids have the wrong type or transform. NaN/Inf/negative values of the
+// density and of the radiance grid read are replaced (as loadVolume does) and reported in
+// `warnings`; with NonFinitePolicy::Reject they are a FileError naming the file and the grid.
+LightingVolume importFromDcc(const std::string& dir, Dcc dcc, DccImportReport* report = nullptr,
+                             NonFinitePolicy nonFinite = NonFinitePolicy::Sanitise);
 
 }  // namespace lh

@@ -57,3 +57,13 @@ lighthouse_cli_error(import_houdini_export_as_blender
   ABSENT imported_wrong.vdb
   ARGS import exp_houdini --from blender -o imported_wrong.vdb)
 set_tests_properties(cli.error.import_houdini_export_as_blender PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_houdini_export")
+
+# import --strict: an export holding NaN, Inf or negative values (set_voxel_value puts them in,
+# as an edit in a DCC program might) is refused; without --strict they are replaced, with a
+# warning.
+add_executable(set_voxel_value ${CMAKE_CURRENT_SOURCE_DIR}/set_voxel_value.cpp)
+target_link_libraries(set_voxel_value PRIVATE OpenVDB::openvdb)
+add_test(NAME cli.import_strict
+  COMMAND bash ${LH_CLI_SCRIPTS}/import_strict_test.sh ${LH_CLI_EXE} $<TARGET_FILE:set_voxel_value>
+          ${CMAKE_CURRENT_BINARY_DIR}/import_strict)
+set_tests_properties(cli.import_strict PROPERTIES TIMEOUT 120 LABELS cli PASS_REGULAR_EXPRESSION "all cases passed")
