@@ -121,6 +121,14 @@ Vec3d parseVec3(const json& j, const std::string& where) {
     return v;
 }
 
+// The string at `key`, "" when absent; a value of another type is refused (json's get would
+// throw its own type_error, which callers do not expect).
+std::string optionalString(const json& j, const char* key, const std::string& where) {
+    if (!j.contains(key)) return "";
+    if (!j[key].is_string()) throw InputError(where + ": '" + key + "' must be a string");
+    return j[key].get<std::string>();
+}
+
 }  // namespace
 
 const PinholeCamera& CamerasFile::view(const std::string& name) const {
@@ -160,8 +168,8 @@ CamerasFile parseCamerasJson(const std::string& text, const std::string& sourceN
                 throw InputError(where + ": each entry needs a 'position'");
             EnvmapSample s;
             s.position = parseVec3(e["position"], where + ".position");
-            if (e.contains("file")) s.file = e["file"].get<std::string>();
-            if (e.contains("position_file")) s.positionFile = e["position_file"].get<std::string>();
+            s.file = optionalString(e, "file", where);
+            s.positionFile = optionalString(e, "position_file", where);
             cams.envmaps.push_back(s);
         }
     }

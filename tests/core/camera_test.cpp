@@ -113,6 +113,20 @@ TEST(Camera, ImpossibleCamerasAreRejected) {
                      "width");
 }
 
+// A non-string envmap file escaped as json's type_error, the one-line error then naming neither
+// the file nor the key ("[json.exception.type_error.302] type must be string, but is number"),
+// and the fuzz target (fuzz/cameras_json.cpp) aborting on it: its corpus keeps the input
+// (fuzz/corpus/cameras_json/crash_envmap_file_number.json).
+TEST(Camera, AnEnvmapFileThatIsNotAStringIsAnInputError) {
+    const std::string ref = R"("ref": {"width": 64, "height": 48, "fx": 50, "fy": 50, "cx": 32, "cy": 24})";
+    for (const char* key : {"file", "position_file"})
+        for (const char* value : {"3", "null", "[\"a.exr\"]", "{}"}) {
+            const std::string json = "{" + ref + R"(, "envmaps": [{"position": [0, 0, 1], ")" + key + "\": " + value + "}]}";
+            EXPECT_THROW(parseCamerasJson(json, "bad.json"), InputError) << json;
+            expectInputError(json, std::string("'") + key + "' must be a string");
+        }
+}
+
 TEST(Camera, MissingFileIsAFileError) {
     EXPECT_THROW(loadCamerasFile("/nonexistent/cameras.json"), FileError);
 }
