@@ -134,6 +134,11 @@ std::string announcedFormat(const std::string& path) {
 }
 
 ImageRGB readStb(const std::string& path) {
+    // stb_image also decodes BMP, GIF, PSD, PIC, PNM, TGA and HDR, whatever the file is called;
+    // only PNG and JPEG reach it. A 13-byte PGM header named .png made it allocate 3.9 GB
+    // (fuzz/corpus/image_png/crash_pgm_named_png_huge.png).
+    if (announcedFormat(path).empty())
+        throw FileError("cannot read '" + path + "': not a PNG or JPEG file (it starts with neither signature)");
     int width = 0, height = 0, fileChannels = 0;
     // Header only: the size is checked before stb allocates the pixels.
     if (!stbi_info(path.c_str(), &width, &height, &fileChannels)) throwStbFailure(path);

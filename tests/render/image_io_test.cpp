@@ -220,6 +220,27 @@ TEST(ImageIo, TruncatedPngAndJpegAreNamedAsSuch) {
         << messageOf(dir.file("text.png"));
 }
 
+// stb_image decodes more formats than PNG and JPEG, whatever the file's name: the fuzzer's
+// 13-byte PGM header named .png (fuzz/corpus/image_png/crash_pgm_named_png_huge.png) made it
+// allocate 0.8 GB, and the float image then 3.1 GB. Only PNG and JPEG content reaches stb now.
+TEST(ImageIo, OtherFormatsUnderAPngOrJpegNameAreRefusedUnread) {
+    ScratchDir dir("other_formats");
+    const std::string pgmHeader = "P55100\x0b" "510353";  // a binary PGM header: 260 million pixels
+    writeBytes(dir.file("huge.png"), std::vector<char>(pgmHeader.begin(), pgmHeader.end()));
+    // A complete 1 x 1 grey PGM, which stb would decode: refused all the same.
+    const std::string pgm = std::string("P5 1 1 255\n") + char(200);
+    writeBytes(dir.file("grey.jpg"), std::vector<char>(pgm.begin(), pgm.end()));
+    for (const char* name : {"huge.png", "grey.jpg"}) {
+        try {
+            lh::readImage(dir.file(name));
+            FAIL() << name << " was read";
+        } catch (const lh::FileError& e) {
+            EXPECT_NE(std::string(e.what()).find("not a PNG or JPEG file"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+    }
+}
+
 TEST(ImageIo, ErrorMessagesAreOneLineAndNameTheFile) {
     ScratchDir dir("messages");
     writeBytes(dir.file("x.exr"), randomBytes(4096));
