@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <sstream>
 
@@ -79,13 +80,28 @@ std::string VolumeLayout::toJson() const {
     return nlohmann::json{{"s0", s0}, {"levels", levels}, {"resolution", resolution}}.dump();
 }
 
+namespace {
+
+// A whole number that fits an int (5 or 5.0; a program that rewrites the JSON may write
+// either). json's get<int>() of 1e300 is undefined behaviour (a float-to-int conversion out of
+// range, which UBSan caught on an export's manifest) and of 2^32 + 1 wraps to 1: both refused.
+int wholeNumber(const nlohmann::json& j, const char* key, const std::string& sourceName) {
+    const nlohmann::json& v = j.at(key);
+    const double d = v.is_number() ? v.get<double>() : 0.5;
+    if (!(std::floor(d) == d && d >= double(INT_MIN) && d <= double(INT_MAX)))
+        throw FileError(sourceName + ": layout metadata '" + key + "' is not a whole number, got " + v.dump());
+    return int(d);
+}
+
+}  // namespace
+
 VolumeLayout VolumeLayout::fromJson(const std::string& text, const std::string& sourceName) {
     try {
         auto j = nlohmann::json::parse(text);
         VolumeLayout layout;
         layout.s0 = j.at("s0").get<double>();
-        layout.levels = j.at("levels").get<int>();
-        layout.resolution = j.at("resolution").get<int>();
+        layout.levels = wholeNumber(j, "levels", sourceName);
+        layout.resolution = wholeNumber(j, "resolution", sourceName);
         layout.validate();
         return layout;
     } catch (const nlohmann::json::exception&) {

@@ -79,6 +79,23 @@ TEST(VolumeLayout, JsonRoundTrip) {
     VolumeLayout l{13.5, 4, 32};
     EXPECT_EQ(VolumeLayout::fromJson(l.toJson(), "x"), l);
     EXPECT_THROW(VolumeLayout::fromJson("{}", "x"), FileError);
+    EXPECT_EQ(VolumeLayout::fromJson(R"({"s0": 13.5, "levels": 4.0, "resolution": 32.0})", "x"), l);
+}
+
+// Counts that are not whole numbers that fit an int are refused, naming the key: 1e300 was a
+// float-to-int conversion out of range (undefined behaviour, caught by UBSan in fuzz/
+// dcc_manifest.cpp; fuzz/corpus/dcc_manifest/crash_layout_levels_1e300.json), 2^32 + 1 wrapped
+// to a valid 1.
+TEST(VolumeLayout, CountsThatAreNotWholeIntsAreRefused) {
+    for (const char* bad : {"1e300", "-1e300", "4294967297", "18446744073709551615", "2.5", "\"4\"", "null"}) {
+        const std::string json = std::string(R"({"s0": 13.5, "levels": )") + bad + R"(, "resolution": 32})";
+        try {
+            VolumeLayout::fromJson(json, "where.vdb");
+            ADD_FAILURE() << "accepted " << json;
+        } catch (const FileError& e) {
+            EXPECT_NE(std::string(e.what()).find("where.vdb"), std::string::npos) << e.what();
+        }
+    }
 }
 
 }  // namespace
