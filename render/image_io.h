@@ -11,7 +11,8 @@
 namespace lh {
 
 // Largest image read or written, in pixels (2^28 = 16384^2): bounds memory at 3 GiB of
-// float RGB and rejects corrupt headers that claim gigantic sizes.
+// float RGB (3.75 GiB while a PNG or JPEG is read: the decoder's 8-bit pixels and the float
+// image, 15 bytes a pixel) and rejects corrupt headers that claim gigantic sizes.
 constexpr std::int64_t kMaxImagePixels = std::int64_t(1) << 28;
 
 // The exact sRGB transfer functions (IEC 61966-2-1), linear <-> encoded, both in [0,1].
