@@ -1,0 +1,6 @@
+// EXR decoding (render/image_io.h readImage on a .exr file): see image_fuzz.h.
+#include "fuzz/image_fuzz.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    return lh::fuzz::readImageInput(data, size, "input.exr", true);
+}
