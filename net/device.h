@@ -11,7 +11,12 @@ namespace lh::net {
 // "cpu" or "cuda[:N]"; throws InputError naming what is wrong (unknown, or no CUDA here).
 torch::Device selectDevice(const std::string& name);
 
-// Intra-op threads for libtorch (it defaults to 1 here); 0 = every core.
+// Intra-op threads for libtorch (it defaults to 1 here); 0 = every core. Also calls
+// keepFreedMemoryInProcess: every command that runs a network starts here.
 void setTorchThreads(int threads);
+
+// Freed memory stays in the process's heap, for the next tensor of the same size (glibc only;
+// device.cpp says why).
+void keepFreedMemoryInProcess();
 
 }  // namespace lh::net

@@ -104,24 +104,42 @@ TEST(OracleTargets, AnotherLayoutIsAClearError) {
 }
 
 TEST(FastConvolution, AgreesWithLibtorchsConvolutionAndItsGradients) {
+    // Batches of 1 and 2, even and odd sizes (an odd size with stride 2 leaves the input's last
+    // row out of every window), 2D and 3D: the hand-written gradients of every argument.
     torch::manual_seed(0);
-    for (const bool threeD : {false, true}) {
-        const auto x = threeD ? torch::randn({1, 5, 8, 12, 10}) : torch::randn({1, 5, 12, 10});
-        const auto w = threeD ? torch::randn({7, 5, 3, 3, 3}) : torch::randn({7, 5, 3, 3});
-        const auto b = torch::randn({7});
-        for (const int64_t stride : {1, 2}) {
-            auto xa = x.clone().requires_grad_(true), wa = w.clone().requires_grad_(true);
-            auto xb = x.clone().requires_grad_(true), wb = w.clone().requires_grad_(true);
-            const auto fast = fastConvolution(xa, wa, b, stride, 1);
-            const auto reference = threeD ? torch::conv3d(xb, wb, b, stride, 1) : torch::conv2d(xb, wb, b, stride, 1);
-            ASSERT_EQ(fast.sizes(), reference.sizes());
-            EXPECT_LT((fast - reference).abs().max().item<double>(), 1e-4);
-            (fast * fast).sum().backward();
-            (reference * reference).sum().backward();
-            EXPECT_LT((xa.grad() - xb.grad()).abs().max().item<double>(), 1e-3);
-            EXPECT_LT((wa.grad() - wb.grad()).abs().max().item<double>(), 1e-2 * wb.grad().abs().max().item<double>());
-        }
-    }
+    for (const bool threeD : {false, true})
+        for (const int64_t batch : {1, 2})
+            for (const int64_t odd : {0, 1}) {
+                const auto x = threeD ? torch::randn({batch, 5, 8 + odd, 12, 10 + odd}) : torch::randn({batch, 5, 12 + odd, 10});
+                const auto w = threeD ? torch::randn({7, 5, 3, 3, 3}) : torch::randn({7, 5, 3, 3});
+                const auto b = torch::randn({7});
+                for (const int64_t stride : {1, 2}) {
+                    auto xa = x.clone().requires_grad_(true), wa = w.clone().requires_grad_(true);
+                    auto xb = x.clone().requires_grad_(true), wb = w.clone().requires_grad_(true);
+                    auto ba = b.clone().requires_grad_(true), bb = b.clone().requires_grad_(true);
+                    const auto fast = fastConvolution(xa, wa, ba, stride, 1);
+                    const auto reference =
+                        threeD ? torch::conv3d(xb, wb, bb, stride, 1) : torch::conv2d(xb, wb, bb, stride, 1);
+                    ASSERT_EQ(fast.sizes(), reference.sizes());
+                    EXPECT_LT((fast - reference).abs().max().item<double>(), 1e-4);
+                    (fast * fast).sum().backward();
+                    (reference * reference).sum().backward();
+                    EXPECT_LT((xa.grad() - xb.grad()).abs().max().item<double>(), 1e-3 * xb.grad().abs().max().item<double>());
+                    EXPECT_LT((wa.grad() - wb.grad()).abs().max().item<double>(), 1e-4 * wb.grad().abs().max().item<double>());
+                    EXPECT_LT((ba.grad() - bb.grad()).abs().max().item<double>(), 1e-4 * bb.grad().abs().max().item<double>());
+                }
+            }
+}
+
+TEST(FastConvolution, GradientsOnlyForWhatNeedsThem) {
+    // A frozen input (the network's first layer) gets no gradient; the weights still do.
+    torch::manual_seed(1);
+    const auto x = torch::randn({1, 3, 6, 6, 6});
+    auto w = torch::randn({4, 3, 3, 3, 3}).requires_grad_(true);
+    fastConvolution(x, w, torch::Tensor(), 1, 1).sum().backward();
+    EXPECT_FALSE(x.grad().defined());
+    ASSERT_TRUE(w.grad().defined());
+    EXPECT_GT(w.grad().abs().sum().item<double>(), 0.0);
 }
 
 }  // namespace
