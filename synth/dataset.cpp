@@ -30,6 +30,7 @@ constexpr int kMaxAttempts = 25;          // scenes tried per example before giv
 constexpr double kMinCameraClearance = 0.3;  // metres from the reference camera to any solid
 constexpr double kMinMedianDepth = 1.0;   // metres: rejects views that stare at a nearby wall
 constexpr double kMinBrightness = 0.1;    // mean sRGB value of ref (the paper's rule)
+constexpr double kMedianLuminance[2] = {0.05, 0.4};  // auto-exposure's range for ref's median
 constexpr double kEnvmapClearance = 0.3;  // metres from an envmap point to any surface
 
 // Why a scene was rejected (for the manifest's statistics).
@@ -121,14 +122,19 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             const std::vector<Vec3d> points = envmapPoints(scene, tracer, rig.ref, o.envmapsPerExample, rng);
 
             const RadianceField field(scene, tracer, panoramas, o.bake);
-            // Auto-exposure: scale the scene so that the reference view's mean luminance is
-            // about 0.18 (a grey card), varied by +-40% per example.
+            // Auto-exposure as a camera meters: the reference view's median luminance lands
+            // at kMedianLuminance[0]-[1] (log-uniform), whatever its lamps and windows do (they
+            // clip). A mean would be ruled by the lamps: metering the mean at 0.18 left the
+            // median at 0.008-0.2, 2.5x darker than the evaluation rooms' 0.05-0.39.
             ImageRGB ref = renderSceneView(tracer, field, rig.ref, o.supersample);
-            double mean = 0;
-            for (std::size_t i = 0; i < ref.pixels.size(); i += 3) mean += luminance(&ref.pixels[i]);
-            mean /= ref.pixels.size() / 3;
-            if (!(mean > 0)) throw Rejected("black reference view");
-            scene.exposure = 0.18 * rng.uniform(0.6, 1.4) / mean;
+            std::vector<double> luminances;
+            for (std::size_t i = 0; i < ref.pixels.size(); i += 3) luminances.push_back(luminance(&ref.pixels[i]));
+            const auto middle = luminances.begin() + long(luminances.size() / 2);
+            std::nth_element(luminances.begin(), middle, luminances.end());
+            const double median = *middle;
+            if (!(median > 0)) throw Rejected("black reference view");
+            const double target = std::exp(rng.uniform(std::log(kMedianLuminance[0]), std::log(kMedianLuminance[1])));
+            scene.exposure = target / median;
             scale(ref, scene.exposure);
             double brightness = 0;
             for (float v : ref.pixels) brightness += srgbEncode(std::clamp(v, 0.f, 1.f));

@@ -15,7 +15,9 @@ namespace lh::synth {
 // Written into Scene::generatorVersion and the data set's manifest; bumped whenever the same
 // seed would give a different scene. Version 2: evaluation-shaped rooms and camera, brick,
 // bands and rings, 1-3 ceiling lights, bright-panel windows, glossy and metallic furniture.
-constexpr int kGeneratorVersion = 2;
+// Version 3: ceilings of any texture (35% near-white), and the photos exposed on their median
+// luminance as a camera meters (synth/dataset.cpp), not on their mean.
+constexpr int kGeneratorVersion = 3;
 
 // Half-range of the reference camera's yaw about the room's depth axis, radians (35 degrees).
 constexpr double kCameraYawSpread = 35.0 * M_PI / 180.0;
