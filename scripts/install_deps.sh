@@ -17,6 +17,7 @@ packages=(
   python3-openvdb python3-numpy   # interop tests: files read and written by python3-openvdb
   blender                         # DCC round trip: Cycles renders of `lighthouse export` (tests/python/dcc_blender_cycles.py)
   slurm-wlm munge                 # batch jobs on Slurm: scripts/slurm/, tested on a one-node cluster (tests/slurm/)
+  colmap                          # optional for users: lighthouse cameras --photos (docs/cameras.md); its tests run when it is here
 )
 
 run() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
