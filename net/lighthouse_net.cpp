@@ -10,6 +10,7 @@
 #include "vdb/mpi.h"
 
 #include <filesystem>
+#include <fstream>
 
 namespace lh::net {
 
@@ -199,8 +200,16 @@ void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision) 
     } else {
         net->save(archive);
     }
+    // Through a stream: save_to(file) names the zip's root folder after the file, and the
+    // temporary's name holds the writer's pid, so the same weights gave different bytes.
+    // From a stream the root is always "archive": equal models are equal files.
     AtomicOutput out(path);  // a kill mid-write leaves the previous file whole
-    archive.save_to(out.tempPath());
+    {
+        std::ofstream file(out.tempPath(), std::ios::binary);
+        archive.save_to(file);
+        file.flush();
+        if (!file) throw FileError("could not write the model '" + path + "' (disk full?)");
+    }
     out.commit();
 }
 

@@ -180,6 +180,24 @@ TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
     std::filesystem::remove(path);
 }
 
+TEST(Model, EqualWeightsAreEqualFilesWhateverTheirNames) {
+    // Data-parallel and sharded runs are checked against single runs byte for byte.
+    torch::manual_seed(5);
+    LighthouseNet net(tinyConfig());
+    const std::string a = test::uniqueTempPath("lighthouse_model_a.pt");
+    const std::string b = test::uniqueTempPath("another_name.pt");
+    saveModel(net, a);
+    saveModel(net, b);
+    const auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    EXPECT_FALSE(bytes(a).empty());
+    EXPECT_EQ(bytes(a), bytes(b));
+    std::filesystem::remove(a);
+    std::filesystem::remove(b);
+}
+
 TEST(Model, HalfPrecisionModelIsHalfTheSizeAndGivesNearlyTheSameOutputs) {
     torch::manual_seed(4);
     LighthouseNet net(test::tinyHdrConfig());

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # scripts/slurm/ on a real one-node Slurm: starts munged, slurmctld and slurmd from Debian's
 # packages (scripts/slurm/one_node_cluster.sh, everything under a temporary directory), runs
-# the pipeline without training (the bundled model): a 4-task synth array, a 4-task predict
-# array, a 4-task eval array and their merges; checks that the data set, the volumes and
-# Table 2 are those of the single-process commands; then runs the pipeline again and checks
-# that every task skipped its finished work. The daemons are stopped on every exit.
+# the whole pipeline: 4-task synth arrays of a training and a test split, their merge,
+# data-parallel training with 2 ranks started by srun (a few iterations of the `small`
+# configuration), a 4-task predict array, a 4-task eval array and their merges; checks that the
+# data sets, the model file, the volumes and Table 2 are those of the single-process commands
+# (one `train` process with the whole batch); then runs the pipeline again and checks that
+# every task skipped its finished work. The daemons are stopped on every exit.
 #
 #   slurm_pipeline_test.sh LIGHTHOUSE SOURCE_DIR
 #
@@ -40,9 +42,12 @@ wait_job() {
         fi
     done
 }
+# Two ranks of one example each against one process with the batch of 2 (net/distributed.h).
+train_args="--config small --iterations 3 --batch 2 --validate-every 3 --validation-scenes 1 --log-every 1 --threads 1"
 run_pipeline() {
-    bash "$src/scripts/slurm/pipeline.sh" --bin "$exe" --shards 4 --train-count 0 --test-count 4 \
-        --model "$src/models/standard.pt" --synth-args "$tiny" --eval-args "--no-oracle" "$tmp/out" | tee "$tmp/jobs.txt"
+    bash "$src/scripts/slurm/pipeline.sh" --bin "$exe" --shards 4 --train-count 4 --test-count 4 \
+        --train-tasks 2 --train-args "$train_args" --threads 1 \
+        --synth-args "$tiny" --eval-args "--no-oracle" "$tmp/out" | tee "$tmp/jobs.txt"
 }
 
 t0=$(date +%s)
@@ -52,13 +57,22 @@ wait_job "$(tail -n 1 "$tmp/jobs.txt")" 240
 echo "pipeline: $(( $(date +%s) - t0 )) s"
 [ "$(ls "$tmp"/out/logs/lh-synth-test-*.log | wc -l)" = 4 ] || fail "expected one log per synth task"
 
+grep -q "rank 1 of 2 joined" "$tmp"/out/logs/lh-train-*.log || fail "training did not run as 2 ranks"
+
 # The same work in one process each.
+"$exe" --threads 1 synth --split train --count 4 $tiny -o "$tmp/one/train" 2>/dev/null
 "$exe" --threads 1 synth --split test --count 4 $tiny -o "$tmp/one/test" 2>/dev/null
-"$exe" predict --examples "$tmp/one/test" --model "$src/models/standard.pt" -o "$tmp/one/predictions" 2>/dev/null
-"$exe" eval --data "$tmp/one/test" --model "$src/models/standard.pt" --no-oracle -o "$tmp/one/eval" >/dev/null 2>&1
+# shellcheck disable=SC2086
+"$exe" train --data "$tmp/one/train" $train_args -o "$tmp/one/model.pt" >/dev/null 2>&1
+"$exe" --threads 1 predict --examples "$tmp/one/test" --model "$tmp/one/model.pt" -o "$tmp/one/predictions" 2>/dev/null
+"$exe" --threads 1 eval --data "$tmp/one/test" --model "$tmp/one/model.pt" --no-oracle -o "$tmp/one/eval" >/dev/null 2>&1
+same_dataset "$tmp/one/train" "$tmp/out/train"
 same_dataset "$tmp/one/test" "$tmp/out/test"
+same_file "$tmp/one/model.pt" "$tmp/out/model.pt"
+echo "model trained by 2 srun ranks = model trained by one process"
 for v in "$tmp"/one/predictions/*.vdb; do same_vdb "$v" "$tmp/out/predictions/$(basename "$v")"; done
-# predictions.json names the data set's paths, which differ: compare it with them swapped.
+# predictions.json and table.md name the paths of the data set and the model, which differ:
+# compare them with those swapped.
 diff <(sed "s|$tmp/one/|X/|g" "$tmp/one/predictions/predictions.json") \
      <(sed "s|$tmp/out/|X/|g" "$tmp/out/predictions/predictions.json") >&2 || fail "predictions.json differ"
 for f in metrics.csv contact_sheet.png; do same_file "$tmp/one/eval/$f" "$tmp/out/eval/$f"; done
