@@ -16,6 +16,17 @@ torch::Tensor imageLoss(const torch::Tensor& predictedLinear, const torch::Tenso
 // radiance. Unlike imageLoss it sees how bright a lamp or window is (imageLoss clamps at 1).
 torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
 
+// Diffuse-irradiance loss: the cosine-weighted integrals of linear radiance over the six axis
+// normals (the irradiance a diffuse surface facing +-x, +-y, +-z receives, as the metric of
+// docs/metrics.md), their mean relative error |E_pred - E_gt| / E_gt (E_gt floored at 1e-3 of
+// its mean). Envmaps [N, 3, H, W] in the equirectangular layout. A lamp the photo cannot place
+// costs the per-pixel losses twice where it is guessed wrong, and so they leave it out; this
+// loss asks only for the right light from each side, which a compact bright guess gives.
+torch::Tensor irradianceLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
+
+// The six axis irradiances [N, 3, 6] of envmaps [N, 3, H, W] (normals +x, -x, +y, -y, +z, -z).
+torch::Tensor axisIrradianceTensor(const torch::Tensor& envmaps);
+
 // Direct supervision of the cubes by the oracle's (net/oracle_targets.h), both [1, 4, R, R, R]
 // per level (rgb, voxel alpha): per level, for alpha, the L1 (whose optimum under uncertainty
 // is empty or opaque, not fog) plus a tenth of the binary cross-entropy (alpha clamped to

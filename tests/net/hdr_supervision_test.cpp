@@ -55,6 +55,37 @@ TEST(Losses, HdrImageLossIsZeroOnIdenticalInputsAndSeesBrightness) {
     EXPECT_NEAR(hdrImageLoss(dim, a).item<double>(), std::log(51.0) - std::log(2.0), 1e-5);
 }
 
+TEST(Losses, AxisIrradianceOfAConstantEnvmapIsPiTimesItsRadiance) {
+    // A uniform sky of radiance L gives E = pi L on every side; a sky lit only from above
+    // (rows of the top half, -y) gives pi L to the normal facing up (-y) and none to +y.
+    const auto uniform = torch::full({1, 3, 60, 120}, 2.0);
+    const auto e = axisIrradianceTensor(uniform);
+    ASSERT_EQ(e.sizes(), torch::IntArrayRef({1, 3, 6}));
+    EXPECT_NEAR(e.min().item<double>(), 2.0 * M_PI, 2e-3 * 2.0 * M_PI);
+    EXPECT_NEAR(e.max().item<double>(), 2.0 * M_PI, 2e-3 * 2.0 * M_PI);
+    auto upper = torch::zeros({1, 3, 60, 120});
+    upper.narrow(2, 0, 30).fill_(1.0);
+    const auto u = axisIrradianceTensor(upper);
+    EXPECT_NEAR(u[0][1][3].item<double>(), M_PI, 2e-3 * M_PI);  // normal -y: up
+    EXPECT_NEAR(u[0][1][2].item<double>(), 0.0, 1e-6);          // normal +y: down
+    EXPECT_NEAR(u[0][1][0].item<double>(), M_PI / 2, 2e-3 * M_PI);  // sideways: half the sky
+}
+
+TEST(Losses, IrradianceLossIsZeroOnIdenticalInputsAndIndifferentToWhereALampIs) {
+    auto room = torch::full({1, 3, 30, 60}, 0.2);
+    EXPECT_EQ(irradianceLoss(room, room).item<double>(), 0.0);
+    // A lamp in the ceiling, and the same lamp moved a few pixels along the ceiling: the
+    // per-pixel losses see two errors, the irradiance from every side barely changes.
+    auto lamp = room.clone(), moved = room.clone();
+    lamp.narrow(2, 2, 2).narrow(3, 10, 2).fill_(500.0);
+    moved.narrow(2, 2, 2).narrow(3, 13, 2).fill_(500.0);
+    const double shifted = irradianceLoss(moved, lamp).item<double>();
+    const double missing = irradianceLoss(room, lamp).item<double>();
+    EXPECT_GT(missing, 0.3);
+    EXPECT_LT(shifted, 0.3 * missing);  // 0.08 against 0.37
+    EXPECT_GT(hdrImageLoss(moved, lamp).item<double>(), 0.5 * hdrImageLoss(room, lamp).item<double>());
+}
+
 TEST(Losses, VoxelLossIsMinimalOnIdenticalCubesAndKnownOtherwise) {
     auto cube = torch::zeros({1, 4, 16, 16, 16});
     cube.narrow(1, 3, 1).narrow(2, 0, 8).fill_(1.0);  // the far half is opaque
