@@ -95,7 +95,7 @@ section() {  # the lines of file $1 from the heading that starts with $2 to the 
   echo "# Speed, error and memory (scripts/performance_study.sh)"
   echo
   echo "* command: \`bash scripts/performance_study.sh$([ "$quick" = 1 ] && echo " --quick")\`"
-  echo "* when: $(date -u '+%Y-%m-%d %H:%M UTC'); commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo ', with uncommitted changes')"
+  echo "* commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo ', with uncommitted changes')"
   echo "* machine: $(nproc) cores, $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)"
   [ "$quick" = 0 ] || echo "* **quick run** (60x30 envmaps, 2 points, 1 round): its times do not measure the targets"
   for v in "${volumes[@]}"; do
