@@ -8,9 +8,11 @@ foreach(part synth export)
     PASS_REGULAR_EXPRESSION "all cases passed")
 endforeach()
 if(TARGET lighthouse_net)
-  add_test(NAME cli.kill_resume.train
-    COMMAND bash ${LH_CLI_SCRIPTS}/kill_resume_test.sh ${LH_CLI_EXE} ${CMAKE_CURRENT_BINARY_DIR}/kill_resume_train
-            train)
-  set_tests_properties(cli.kill_resume.train PROPERTIES TIMEOUT 240 LABELS cli
-    PASS_REGULAR_EXPRESSION "all cases passed")
+  foreach(part predict train)
+    add_test(NAME cli.kill_resume.${part}
+      COMMAND bash ${LH_CLI_SCRIPTS}/kill_resume_test.sh ${LH_CLI_EXE} ${CMAKE_CURRENT_BINARY_DIR}/kill_resume_${part}
+              ${part})
+    set_tests_properties(cli.kill_resume.${part} PROPERTIES TIMEOUT 240 LABELS cli
+      PASS_REGULAR_EXPRESSION "all cases passed")
+  endforeach()
 endif()

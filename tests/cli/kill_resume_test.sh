@@ -8,14 +8,16 @@
 #           then while replacing one with --force, then at several fixed delays: the final name
 #           holds a whole export (the old or the new) or nothing, and the next export removes
 #           what the killed one left;
+#   predict killed while writing its volume and while writing its envmaps; the same command
+#           writes the files of an uninterrupted run;
 #   train   killed after its first checkpoint, while a checkpoint is being written and while
 #           the model file is being written; the same command resumes from the last complete
 #           checkpoint and ends with the weights of an uninterrupted run; the checkpoint and
 #           the model load.
 # Every part ends with no temporary (a hidden file or folder) left in its output folder.
-#   kill_resume_test.sh LIGHTHOUSE WORKDIR synth|export|train
+#   kill_resume_test.sh LIGHTHOUSE WORKDIR synth|export|predict|train
 set -u
-[ $# -eq 3 ] || { echo "usage: $0 LIGHTHOUSE WORKDIR synth|export|train" >&2; exit 2; }
+[ $# -eq 3 ] || { echo "usage: $0 LIGHTHOUSE WORKDIR synth|export|predict|train" >&2; exit 2; }
 lh=$1
 work=$2
 part=$3
@@ -174,6 +176,30 @@ EOF
         --cameras syn/000000/cameras.json -o predicted.vdb && [ -s predicted.vdb ] || fail "the model did not load"
     no_temporaries .
     echo "ok train_killed_and_resumed"
+    ;;
+predict)
+    run data synth "${tiny[@]}" --count 1 -o syn || exit 1
+    e=syn/000000
+    predict=(--threads 1 predict --ref $e/ref.png --src $e/src.png --cameras $e/cameras.json
+             --at 0,0,1.5 --at 0.2,0.1,2 --png -o out/p.vdb)
+    mkdir -p out whole_out
+    run whole "${predict[@]/out\/p.vdb/whole_out/p.vdb}" || exit 1
+    # Killed while the volume is being written, then while the envmaps are: no half file ever
+    # has a final name, and the same command writes the files of an uninterrupted run.
+    start cut1 "${predict[@]}"
+    kill_when cut1 "out/.p.tmpPID_*.vdb"
+    [ -e out/p.vdb ] && fail "the volume being written appeared under its final name"
+    start cut2 "${predict[@]}"
+    kill_when cut2 "out/.p_00[01].tmpPID_*.exr"
+    [ -s out/p.vdb ] || fail "the volume written before the envmaps is missing"
+    run rerun "${predict[@]}" || exit 1
+    cmp -s <(tail -c +58 out/p.vdb) <(tail -c +58 whole_out/p.vdb) ||
+        fail "the re-run's volume differs from the uninterrupted run's"
+    for f in p_000.exr p_001.exr p_000.png p_001.png; do
+        cmp -s "out/$f" "whole_out/$f" || fail "out/$f differs from the uninterrupted run's"
+    done
+    no_temporaries out
+    echo "ok predict_killed_and_rerun"
     ;;
 *)
     echo "unknown part '$part'" >&2
