@@ -39,6 +39,10 @@ void addTrainCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     cmd->add_option("--lr", o->learningRate, "Adam learning rate (divided by 10 for the last 20%)")
         ->capture_default_str();
+    cmd->add_option("--average-decay", o->averageDecay,
+                    "The model written and validated is the moving average of the weights with this decay per "
+                    "iteration (0: the last step's weights)")
+        ->capture_default_str();
     cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")->capture_default_str();
     cmd->add_option("--validation-scenes", o->validationScenes, "Held-out scenes scored at each validation")
         ->capture_default_str();

@@ -15,6 +15,7 @@
 #include "net/training_data.h"
 #include "net/vgg_loss.h"
 #include "net/volume_render.h"
+#include "net/weight_average.h"
 #include "render/contact_sheet.h"
 #include "render/image_io.h"
 #include "render/metrics.h"
@@ -42,6 +43,7 @@ void TrainOptions::validate() const {
         throw InputError("--supervision must be 'direct' or 'paper', got '" + supervision + "'");
     if (stopAfter < 0) throw InputError("--stop-after must be at least 0");
     if (batch < 1 || batch > 4096) throw InputError("--batch must be in [1, 4096]");
+    if (!(averageDecay >= 0 && averageDecay < 1)) throw InputError("--average-decay must be in [0, 1)");
     if (batch % distributed.worldSize != 0)
         throw InputError("--batch " + std::to_string(batch) + " must be a multiple of the world size " +
                          std::to_string(distributed.worldSize) + " (each rank takes an equal slice)");
@@ -82,6 +84,7 @@ int stageAt(int iteration, int total, bool direct) {
 
 struct TrainingState {
     LighthouseNet net{nullptr};
+    LighthouseNet average{nullptr};  // the moving average of net's weights: the model written
     PatchDiscriminator discriminator{nullptr};
     std::unique_ptr<torch::optim::Adam> optimizer, discriminatorOptimizer;
     int iteration = 0;
@@ -94,8 +97,10 @@ void setLearningRate(torch::optim::Adam& optimizer, double lr) {
 
 
 void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
-    torch::serialize::OutputArchive archive, net, disc, opt, discOpt;
+    torch::serialize::OutputArchive archive, net, average, disc, opt, discOpt;
     s.net->save(net);
+    s.average->save(average);
+    archive.write("average", average);
     s.discriminator->save(disc);
     s.optimizer->save(opt);
     s.discriminatorOptimizer->save(discOpt);
@@ -112,7 +117,7 @@ void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
     AtomicOutput out(o.checkpointPath());
     archive.save_to(out.tempPath());
     out.commit();
-    saveModel(s.net, o.out, o.halfModel);
+    saveModel(s.average, o.out, o.halfModel);
 }
 
 bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
@@ -130,6 +135,10 @@ bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
         archive.read("discriminator_optimizer", discOpt);
         archive.read("iteration", iteration);
         s.net->load(net);
+        // A checkpoint from before the average was kept starts it at its weights.
+        torch::serialize::InputArchive average;
+        if (archive.try_read("average", average)) s.average->load(average);
+        else copyWeights(s.average, s.net);
         s.discriminator->load(disc);
         s.optimizer->load(opt);
         s.discriminatorOptimizer->load(discOpt);
@@ -338,6 +347,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     TrainingState s;
     s.net = LighthouseNet(o.configOverride ? *o.configOverride : NetConfig::byName(o.config));
     s.net->to(device);
+    s.average = LighthouseNet(s.net->config);
+    s.average->to(device);
+    s.average->eval();
+    copyWeights(s.average, s.net);
     s.discriminator = PatchDiscriminator();
     s.discriminator->to(device);
     s.optimizer = std::make_unique<torch::optim::Adam>(s.net->parameters(), torch::optim::AdamOptions(o.learningRate));
@@ -352,6 +365,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         if (!start->config.sameParameters(s.net->config))
             throw InputError("--init '" + o.init + "' is a '" + start->config.name + "' model with other sizes than --config " + o.config);
         copyWeights(s.net, start);
+        copyWeights(s.average, s.net);
         progress << "train: no checkpoint at " << o.checkpointPath() << "; fine-tuning from " << o.init
                  << " with a fresh optimiser\n";
         if (start->config.colourAnchor != s.net->config.colourAnchor)
@@ -487,6 +501,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         }
         torch::nn::utils::clip_grad_norm_(s.net->parameters(), kGradientClipNorm);
         s.optimizer->step();
+        updateWeightAverage(s.average, s.net, o.averageDecay);
         s.discriminator->zero_grad();  // the generator term left gradients in the discriminator
         window.secondsBackward += secondsSince(clock);
 
@@ -520,7 +535,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             row.secondsAllReduce = window.secondsAllReduce / windowCount;
             row.learningRate = lr;
             row.itPerSecond = windowCount / std::chrono::duration<double>(now - windowStart).count();
-            if (validateNow && root) std::tie(row.valPsnr, row.valAngular) = validate(s.net, validationScenes, device);
+            if (validateNow && root) std::tie(row.valPsnr, row.valAngular) = validate(s.average, validationScenes, device);
             const double elapsed = std::chrono::duration<double>(now - runStart).count();
             const double eta = elapsed / std::max(1, done - firstIteration) * (o.iterations - done);
             progress << "train: it " << done << "/" << o.iterations << "  stage " << stage << "  loss " << std::fixed
@@ -553,7 +568,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     }
     s.iteration = o.iterations;
     if (!root) return;
-    saveModel(s.net, o.out, o.halfModel);
+    saveModel(s.average, o.out, o.halfModel);
     writeLog(o, s.log);
     progress << "train: wrote " << o.out << " (log " << o.out << ".csv, curves " << o.out << ".png)\n";
 }

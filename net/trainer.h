@@ -11,7 +11,8 @@
 //     stage 3 (last 10%): the PatchGAN adversarial loss added (weight 0.1).
 // Image losses: the paper's VGG-19 perceptual loss with --vgg FILE, else the substitute of
 // losses.h. Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1 (or --batch);
-// non-finite gradients zeroed; gradients clipped to a global norm of 5. Each iteration draws
+// non-finite gradients zeroed; gradients clipped to a global norm of 5; the model written is
+// the moving average of the weights (--average-decay). Each iteration draws
 // its example and augmentation (net/augment.h) from (seed, iteration) alone, so a resumed
 // run repeats exactly what an uninterrupted one would have done.
 #pragma once
@@ -53,6 +54,9 @@ struct TrainOptions {
     // the batch's mean. Example j of iteration i draws from (seed, i, j), example 0 from
     // (seed, i) alone, as with batch 1.
     int batch = 1;
+    // The model written and validated is the exponential moving average of the weights with
+    // this decay per iteration (net/weight_average.h); 0: the weights of the last step.
+    double averageDecay = 0.998;
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

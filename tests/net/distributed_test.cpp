@@ -60,6 +60,7 @@ TrainOptions commonOptions(const std::string& data, const std::string& out) {
     o.threads = 1;
     o.seed = 5;
     o.halfModel = false;  // compare float32 weights
+    o.averageDecay = 0;   // the last step's weights: what the ranks all-reduce
     return o;
 }
 

@@ -5,6 +5,7 @@
 #include "net/mpi_render.h"
 #include "net/tensor_image.h"
 #include "net/volume_render.h"
+#include "net/weight_average.h"
 #include "tests/net/net_test_scenes.h"
 
 #include "tests/support/temp_path.h"
@@ -178,6 +179,21 @@ TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
     EXPECT_TRUE(torch::equal(a.mpi, b.mpi));
     for (size_t k = 0; k < a.cubes.size(); ++k) EXPECT_TRUE(torch::equal(a.cubes[k], b.cubes[k]));
     std::filesystem::remove(path);
+}
+
+TEST(Model, WeightAverageMovesByOneMinusTheDecayPerUpdate) {
+    // From 0 towards weights of 1 at decay 0.75: 0.25, then 0.4375 (= 1 - 0.75^2).
+    LighthouseNet average(tinyConfig()), current(tinyConfig());
+    {
+        torch::NoGradGuard noGrad;
+        for (auto& p : average->parameters()) p.zero_();
+        for (auto& p : current->parameters()) p.fill_(1.0);
+    }
+    updateWeightAverage(average, current, 0.75);
+    for (const auto& p : average->parameters()) EXPECT_TRUE(torch::allclose(p, torch::full_like(p, 0.25)));
+    updateWeightAverage(average, current, 0.75);
+    for (const auto& p : average->parameters()) EXPECT_TRUE(torch::allclose(p, torch::full_like(p, 0.4375)));
+    for (const auto& p : average->parameters()) EXPECT_FALSE(p.grad().defined());
 }
 
 TEST(Model, EqualWeightsAreEqualFilesWhateverTheirNames) {

@@ -45,6 +45,7 @@ protected:
         o.logEvery = 1;
         o.threads = 1;
         o.seed = 3;
+        o.averageDecay = 0.5;  // an average that moves within 4 steps, so resuming must restore it
         return o;
     }
     static void removeOutputs(const TrainOptions& o) {
@@ -92,6 +93,34 @@ TEST_F(TrainerTest, ResumingGivesTheWeightsOfAnUninterruptedRun) {
     EXPECT_GT(moved, 1e-4);
     removeOutputs(whole);
     removeOutputs(split);
+}
+
+TEST_F(TrainerTest, TheModelWrittenIsTheAverageOfTheWeights) {
+    // Decay 0: the last step's weights, moved from the fresh network's. A decay of nearly 1:
+    // the average has not left the fresh network's weights in 4 steps.
+    std::ostringstream log;
+    TrainOptions last = options("lighthouse_trainer_last");
+    last.averageDecay = 0.0;
+    last.halfModel = false;  // float32 files: the comparison below is finer than half precision
+    train(last, log);
+    TrainOptions slow = options("lighthouse_trainer_slow_average");
+    slow.averageDecay = 1.0 - 1e-9;
+    slow.halfModel = false;
+    train(slow, log);
+    torch::manual_seed(3);
+    LighthouseNet fresh(test::tinyHdrConfig());
+    const auto distanceFromFresh = [&](const std::string& path) {
+        LighthouseNet m = loadModel(path, torch::Device(torch::kCPU));
+        const auto parameters = m->named_parameters();
+        double worst = 0;
+        for (const auto& p : fresh->named_parameters())
+            worst = std::max(worst, (p.value() - parameters[p.key()]).abs().max().item<double>());
+        return worst;
+    };
+    EXPECT_GT(distanceFromFresh(last.out), 1e-4);
+    EXPECT_LT(distanceFromFresh(slow.out), 1e-3 * distanceFromFresh(last.out));
+    removeOutputs(last);
+    removeOutputs(slow);
 }
 
 TEST_F(TrainerTest, DirectSupervisionUsesTheOracleAndTheDepth) {
