@@ -41,15 +41,55 @@ TEST(Augment, PhotosClipAndQuantiseWhileTargetsScale) {
     EXPECT_FLOAT_EQ(target.at(0, 0)[2], 0.2f);
 }
 
+TEST(Augment, JpegKeepsSmoothContentAndBlursSharpEdges) {
+    // A smooth ramp survives JPEG at quality 90 within a few code values; a one-pixel
+    // checkerboard of two colours (all high frequency, in the chroma JPEG subsamples below
+    // quality 90) is smeared, at 60 more than at 90.
+    ImageRGB ramp(64, 48), checker(64, 48);
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int c = 0; c < 3; ++c) {
+                ramp.at(x, y)[c] = srgbDecode(float(x) / 63.f * 0.8f + 0.1f);
+                checker.at(x, y)[c] = ((x + y) % 2 == 0) == (c == 0) ? 0.8f : 0.05f;  // red / cyan
+            }
+    const auto worstCode = [](const ImageRGB& a, const ImageRGB& b) {
+        double worst = 0;
+        for (std::size_t i = 0; i < a.pixels.size(); ++i)
+            worst = std::max(worst, std::abs(double(srgbEncode(a.pixels[i]) - srgbEncode(b.pixels[i]))) * 255.0);
+        return worst;
+    };
+    const ImageRGB smooth = jpegRoundTrip(ramp, 90);
+    ASSERT_EQ(smooth.width, 64);
+    ASSERT_EQ(smooth.height, 48);
+    EXPECT_LT(worstCode(smooth, ramp), 6.0);
+    const double at90 = worstCode(jpegRoundTrip(checker, 90), checker);
+    const double at60 = worstCode(jpegRoundTrip(checker, 60), checker);
+    std::printf("JPEG of the checkerboard: worst %.1f code values at quality 90, %.1f at 60\n", at90, at60);
+    EXPECT_GT(at60, 20.0);
+    EXPECT_GT(at60, at90);
+    // augmentPhoto applies it when drawn.
+    Augmentation a;
+    a.jpegQuality = 60;
+    ImageRGB photo = checker;
+    Random rng(2);
+    augmentPhoto(photo, a, rng);
+    EXPECT_GT(worstCode(photo, checker), 10.0);
+}
+
 TEST(Augment, DrawsWithinItsRangesAndNoiseChangesPixels) {
     Random rng(7);
+    int jpegDraws = 0;
     for (int i = 0; i < 200; ++i) {
         const Augmentation a = drawAugmentation(rng);
         EXPECT_GE(a.exposure, std::exp(-0.6) - 1e-12);
         EXPECT_LE(a.exposure, std::exp(0.6) + 1e-12);
         for (double g : a.gain) EXPECT_TRUE(g >= std::exp(-0.12) - 1e-12 && g <= std::exp(0.12) + 1e-12);
         EXPECT_TRUE(a.noiseSigma >= 0 && a.noiseSigma <= 2.5 / 255.0);
+        EXPECT_TRUE(a.jpegQuality == 0 || (a.jpegQuality >= 60 && a.jpegQuality <= 95)) << a.jpegQuality;
+        jpegDraws += a.jpegQuality > 0;
     }
+    EXPECT_GT(jpegDraws, 60);  // about half of 200
+    EXPECT_LT(jpegDraws, 140);
     Augmentation noisy;
     noisy.noiseSigma = 2.0 / 255.0;
     ImageRGB flat(32, 32);
