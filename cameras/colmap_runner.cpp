@@ -129,7 +129,8 @@ ColmapRunResult runColmapOnPair(const std::string& refPhoto, const std::string& 
     };
     std::vector<std::string> extract = {"--database_path", db, "--image_path", images,
                                         "--ImageReader.camera_model", "SIMPLE_RADIAL",
-                                        "--SiftExtraction.use_gpu", "0"};
+                                        "--SiftExtraction.use_gpu", "0",
+                                        "--SiftExtraction.num_threads", "1"};
     if (sameSize) {
         // One camera for both photos (two shots of one lens, or a rectified pair).
         extract.insert(extract.end(), {"--ImageReader.single_camera", "1"});
@@ -140,7 +141,11 @@ ColmapRunResult runColmapOnPair(const std::string& refPhoto, const std::string& 
                                 number(0.5 * ri.storedHeight) + ",0"});
     }
     step("feature_extractor", extract);
-    step("exhaustive_matcher", {"--database_path", db, "--SiftMatching.use_gpu", "0"});
+    // One thread for extraction, matching and mapping: with several, RANSAC's random samples depend on
+    // thread timing and the pose (and the near/far range) change from run to run; two photos
+    // take a few seconds either way. The seed is COLMAP's default, written out.
+    step("exhaustive_matcher", {"--database_path", db, "--SiftMatching.use_gpu", "0",
+                                "--SiftMatching.num_threads", "1", "--random_seed", "0"});
     // The mapper's defaults are made for many views: it drops models of fewer than 10 images
     // and wants 16 degrees of triangulation angle to start; a stereo pair a hand's width
     // apart gives a degree or two.
@@ -151,7 +156,9 @@ ColmapRunResult runColmapOnPair(const std::string& refPhoto, const std::string& 
                                     "--Mapper.init_min_num_inliers", "30",
                                     "--Mapper.init_min_tri_angle", "0.5",
                                     "--Mapper.tri_min_angle", "0.5",
-                                    "--Mapper.filter_min_tri_angle", "0.5"};
+                                    "--Mapper.filter_min_tri_angle", "0.5",
+                                    "--Mapper.num_threads", "1",
+                                    "--random_seed", "0"};
     if (fx)
         map.insert(map.end(), {"--Mapper.ba_refine_focal_length", "0",
                                "--Mapper.ba_refine_extra_params", "0"});
