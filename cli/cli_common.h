@@ -2,7 +2,7 @@
 // warnings printed once.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 #include "vdb/lighting_volume.h"
 #include "vdb/volume_io.h"
 

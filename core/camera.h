@@ -2,17 +2,13 @@
 // +z forward; pixel (u, v) has its centre at (u + 0.5, v + 0.5); pose = cam_to_world).
 #pragma once
 
-#include <openvdb/math/Mat3.h>
-#include <openvdb/math/Vec3.h>
+#include "core/vec.h"
 
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace lh {
-
-using Vec3d = openvdb::math::Vec3<double>;
-using Mat3d = openvdb::math::Mat3<double>;
 
 struct PinholeCamera {
     int width = 0;   // pixels

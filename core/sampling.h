@@ -1,7 +1,7 @@
 // Hemisphere sampling shared by the synthetic-scene baker and object insertion.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <algorithm>
 #include <cmath>

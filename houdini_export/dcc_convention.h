@@ -6,7 +6,7 @@
 //   Houdini (Y-up, right-handed, cameras look along -Z):   X = x, Y = -y, Z = -z
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <string>
 

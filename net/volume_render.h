@@ -10,7 +10,7 @@
 // with colour = emission / sigma; nothing is added behind the volume.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 #include "net/torch_pch.h"
 #include "vdb/volume_layout.h"
 

@@ -2,7 +2,7 @@
 // occlusion out. Both the synthetic scene tracer and the inserted-object tracer use it.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <cstdint>
 #include <limits>

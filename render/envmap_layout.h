@@ -6,7 +6,7 @@
 // Row 0 looks up (-y), column W/2 forward (+z), column 3W/4 right (+x), column W/4 left (-x).
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <cmath>
 

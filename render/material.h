@@ -6,7 +6,7 @@
 //   diffuse:R,G,B       Lambertian with linear albedo R,G,B in [0, 1], cosine-sampled
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <string>
 

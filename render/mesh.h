@@ -3,7 +3,7 @@
 // object's --scale is its radius in scene units.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <cstdint>
 #include <string>

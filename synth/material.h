@@ -10,7 +10,7 @@
 // average and the lighting volume can represent it exactly.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // HDR panoramas seen through windows: loaded once, reduced, looked up by direction.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 #include "render/image.h"
 
 #include <map>

@@ -9,7 +9,7 @@
 // view-dependent reflection in the camera views only.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 #include "synth/material.h"
 
 #include <cstdint>

@@ -4,6 +4,7 @@
 // half of the room looking down its depth. Deterministic by seed.
 #pragma once
 
+#include "core/camera.h"
 #include "synth/scene.h"
 
 #include <cmath>

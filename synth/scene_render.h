@@ -2,6 +2,7 @@
 // (docs/conventions.md#envmap-layout) with the first-hit positions and the observed-content mask.
 #pragma once
 
+#include "core/camera.h"
 #include "render/image.h"
 #include "synth/radiance_field.h"
 

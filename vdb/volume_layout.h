@@ -4,7 +4,7 @@
 // on the middle of its back face and every level lies on voxel boundaries of its parent.
 #pragma once
 
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <openvdb/math/Transform.h>
 

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "cameras/colmap_model.h"
-#include "core/camera.h"
+#include "core/vec.h"
 
 #include <cmath>
 #include <cstdint>
