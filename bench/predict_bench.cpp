@@ -4,7 +4,7 @@
 // does not depend on their values. Target: the default (standard) under 5 s on 2 cores.
 #include "core/camera.h"
 #include "net/predictor.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 #include <benchmark/benchmark.h>
 

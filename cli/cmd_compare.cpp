@@ -1,13 +1,13 @@
 // `lighthouse compare PRED.exr GT.exr [--mask M.png]`
 // `lighthouse compare --batch PRED_DIR GT_DIR [--csv out.csv]`
 // The metrics of docs/conventions.md#metrics and the two HDR ones of docs/metrics.md,
-// implemented in render/metrics.h.
+// implemented in image/metrics.h.
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,9 +6,9 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
-#include "render/contact_sheet.h"
+#include "image/contact_sheet.h"
 #include "render/envmap.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "render/insertion.h"
 
 #include <chrono>

@@ -6,7 +6,7 @@
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "render/envmap.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "synth/oracle.h"
 #include "synth/scene_json.h"
 #include "vdb/volume_io.h"

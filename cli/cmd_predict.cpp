@@ -13,7 +13,7 @@
 #include "net/predictor.h"
 #include "net/training_data.h"
 #include "render/envmap.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "vdb/volume_io.h"
 
 #include <nlohmann/json.hpp>

@@ -7,7 +7,7 @@
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "render/envmap.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 #include <chrono>
 #include <iostream>

@@ -6,7 +6,7 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "render/render_volume.h"
 #include "render/view.h"
 

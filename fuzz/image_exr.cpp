@@ -1,4 +1,4 @@
-// EXR decoding (render/image_io.h readImage on a .exr file): see image_fuzz.h.
+// EXR decoding (image/image_io.h readImage on a .exr file): see image_fuzz.h.
 #include "fuzz/image_fuzz.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

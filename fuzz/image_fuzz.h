@@ -1,12 +1,12 @@
 // The three image targets: the input as a file of one extension, read by readImage
-// (render/image_io.h), which must refuse a bad file with a FileError or ResourceError and
+// (image/image_io.h), which must refuse a bad file with a FileError or ResourceError and
 // return, for a good one, an image whose pixel count matches its size; PNG and JPEG must decode
 // to values in [0, 1] (an EXR holds whatever floats the file has, NaN included).
 #pragma once
 
 #include "core/errors.h"
 #include "fuzz/fuzz_input.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 #include <cmath>
 #include <cstddef>

@@ -1,4 +1,4 @@
-// PNG decoding (render/image_io.h readImage on a .png file): see image_fuzz.h.
+// PNG decoding (image/image_io.h readImage on a .png file): see image_fuzz.h.
 #include "fuzz/image_fuzz.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

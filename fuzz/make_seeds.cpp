@@ -5,7 +5,7 @@
 // build: an export's id is random, so every run gives a new fixture (and manifests to match).
 #include "core/errors.h"
 #include "houdini_export/dcc_export.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "vdb/example_volume.h"
 #include "vdb/volume_io.h"
 

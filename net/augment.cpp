@@ -1,7 +1,7 @@
 #include "net/augment.h"
 
 #include "core/errors.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "core/random.h"
-#include "render/image.h"
+#include "image/image.h"
 
 namespace lh::net {
 

@@ -1,8 +1,8 @@
 #include "net/curve_plot.h"
 
 #include "core/atomic_file.h"
-#include "render/image.h"
-#include "render/image_io.h"
+#include "image/image.h"
+#include "image/image_io.h"
 
 #include <stb/stb_easy_font.h>
 

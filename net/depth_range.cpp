@@ -1,6 +1,6 @@
 #include "net/depth_range.h"
 
-#include "render/contact_sheet.h"
+#include "image/contact_sheet.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "core/camera.h"
-#include "render/image.h"
+#include "image/image.h"
 
 #include <string>
 

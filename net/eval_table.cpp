@@ -3,10 +3,10 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/shard.h"
-#include "render/contact_sheet.h"
-#include "render/image.h"
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "image/contact_sheet.h"
+#include "image/image.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
 
 #include <nlohmann/json.hpp>
 

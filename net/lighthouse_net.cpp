@@ -6,7 +6,7 @@
 #include "net/mpi_resample.h"
 #include "net/psv.h"
 #include "net/tensor_image.h"
-#include "render/contact_sheet.h"
+#include "image/contact_sheet.h"
 #include "vdb/mpi.h"
 
 #include <filesystem>

@@ -7,7 +7,7 @@
 #include "net/torch_pch.h"
 #include "net/unet2d.h"
 #include "net/unet3d.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "vdb/volume_layout.h"
 
 #include <vector>

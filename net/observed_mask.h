@@ -13,7 +13,7 @@
 #pragma once
 
 #include "core/camera.h"
-#include "render/image.h"
+#include "image/image.h"
 
 #include <cstdint>
 #include <vector>

@@ -8,7 +8,7 @@
 #include "core/camera.h"
 #include "net/config.h"
 #include "net/depth_range.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "vdb/lighting_volume.h"
 #include "vdb/mpi.h"
 

@@ -4,7 +4,7 @@
 
 #include "core/camera.h"
 #include "net/torch_pch.h"
-#include "render/image.h"
+#include "image/image.h"
 
 namespace lh::net {
 

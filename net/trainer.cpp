@@ -16,9 +16,9 @@
 #include "net/vgg_loss.h"
 #include "net/volume_render.h"
 #include "net/weight_average.h"
-#include "render/contact_sheet.h"
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "image/contact_sheet.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
 
 #include <algorithm>
 #include <chrono>

@@ -2,8 +2,8 @@
 
 #include "core/errors.h"
 #include "net/observed_mask.h"
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
 
 #include <algorithm>
 #include <filesystem>

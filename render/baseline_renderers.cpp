@@ -1,7 +1,7 @@
 #include "render/baseline_renderers.h"
 
 #include "core/errors.h"
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 
 #include <openvdb/tools/Interpolation.h>
 #include <tbb/parallel_for.h>

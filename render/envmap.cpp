@@ -1,7 +1,7 @@
 #include "render/envmap.h"
 
 #include "core/errors.h"
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 #include "render/first_medium.h"
 
 #include <tbb/parallel_for.h>

@@ -1,7 +1,7 @@
 // Rendering equirectangular environment maps (docs/conventions.md#envmap-layout) from a lighting volume.
 #pragma once
 
-#include "render/image.h"
+#include "image/image.h"
 #include "render/ray_marcher.h"
 
 namespace lh {

@@ -1,7 +1,7 @@
 #include "render/first_medium.h"
 
 #include "core/cpu_dispatch.h"
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 
 #include <tbb/parallel_for.h>
 

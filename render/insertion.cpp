@@ -4,7 +4,7 @@
 #include "core/random.h"
 #include "core/sampling.h"
 #include "render/envmap.h"
-#include "render/envmap_lookup.h"
+#include "image/envmap_lookup.h"
 #include "render/object_tracer.h"
 
 #include <tbb/parallel_for.h>

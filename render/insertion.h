@@ -13,7 +13,7 @@
 #pragma once
 
 #include "core/camera.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "render/material.h"
 #include "render/mesh.h"
 #include "render/ray_marcher.h"

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "core/camera.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "render/ray_marcher.h"
 
 namespace lh {

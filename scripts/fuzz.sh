@@ -5,7 +5,7 @@
 # inputs it finds are kept (the committed corpus is never written). A crash, leak, UB report,
 # timeout (60 s) or memory above 6 GiB stops that target and leaves its input in
 # out/fuzz/<target>/. (6 GiB: reading a PNG or JPEG at the 2^28-pixel bound holds 3.75 GiB,
-# render/image_io.h, and AddressSanitizer adds its own; a loader that needs more is a bug.) Prints one line per target: CPU time (the target and the .vdb probes it
+# image/image_io.h, and AddressSanitizer adds its own; a loader that needs more is a bug.) Prints one line per target: CPU time (the target and the .vdb probes it
 # starts), executions, exit status.
 #
 #   bash scripts/fuzz.sh [SECONDS] [TARGET...]      # targets: fuzz/*.cpp, default all

@@ -2,8 +2,8 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
-#include "render/contact_sheet.h"
-#include "render/image_io.h"
+#include "image/contact_sheet.h"
+#include "image/image_io.h"
 #include "core/random.h"
 #include "synth/oracle.h"
 #include "synth/scene_generator.h"

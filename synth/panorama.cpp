@@ -1,8 +1,8 @@
 #include "synth/panorama.h"
 
 #include "core/errors.h"
-#include "render/envmap_lookup.h"
-#include "render/image_io.h"
+#include "image/envmap_lookup.h"
+#include "image/image_io.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "core/vec.h"
-#include "render/image.h"
+#include "image/image.h"
 
 #include <map>
 #include <memory>

@@ -1,6 +1,6 @@
 #include "synth/scene_render.h"
 
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 #include "synth/specular_shading.h"
 
 #include <tbb/parallel_for.h>

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "core/camera.h"
-#include "render/image.h"
+#include "image/image.h"
 #include "synth/radiance_field.h"
 
 #include <cstdint>

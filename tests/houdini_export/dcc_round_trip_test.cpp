@@ -6,7 +6,7 @@
 
 #include "core/errors.h"
 #include "render/envmap.h"
-#include "render/metrics.h"
+#include "image/metrics.h"
 #include "vdb/example_volume.h"
 #include "vdb/volume_io.h"
 

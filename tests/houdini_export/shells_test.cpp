@@ -4,8 +4,8 @@
 #include "houdini_export/shells.h"
 
 #include "render/envmap.h"
-#include "render/envmap_layout.h"
-#include "render/metrics.h"
+#include "image/envmap_layout.h"
+#include "image/metrics.h"
 #include "vdb/example_volume.h"
 
 #include <gtest/gtest.h>

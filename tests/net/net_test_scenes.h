@@ -4,7 +4,7 @@
 
 #include "core/camera.h"
 #include "net/config.h"
-#include "render/image.h"
+#include "image/image.h"
 
 #include <cmath>
 

@@ -5,7 +5,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>

@@ -5,7 +5,7 @@
 #include "net/augment.h"
 #include "net/fast_conv.h"
 #include "net/oracle_targets.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "vdb/lighting_volume.h"
 #include "vdb/volume_io.h"
 

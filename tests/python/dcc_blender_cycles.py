@@ -15,7 +15,7 @@ message when it is absent. Two checks:
 2. Agreement: the example room (3 levels of 32^3, `make-example`) exported for Blender and
    rendered by Cycles at two points, one in the middle level (0, 0, 2) and one in the finest
    (0.2, 0.1, 0.45), against `lighthouse render-envmap` of the original at the same points:
-   PSNR (render/metrics.h, via `lighthouse compare`) at least 30 dB each. This covers the
+   PSNR (image/metrics.h, via `lighthouse compare`) at least 30 dB each. This covers the
    format, the axes, the half-voxel convention, the units and the shells at once: a wrong axis
    or a missing shell costs far more than 10 dB. Cycles at 32 samples, 64x32, volume step 1/4
    voxel measured 34.0 and 36.1 dB; the rest is Cycles' step jitter and its sampling of the

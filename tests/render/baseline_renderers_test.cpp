@@ -1,7 +1,7 @@
 // The renderers we measure against agree with ours where the answer is known.
 #include "render/baseline_renderers.h"
 
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 #include "render/speed_error.h"
 #include "tests/support/test_volumes.h"
 

@@ -1,7 +1,7 @@
 #include "render/envmap.h"
 
 #include "core/errors.h"
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 #include "tests/support/test_volumes.h"
 #include "vdb/example_volume.h"
 

@@ -1,7 +1,7 @@
 // The finest-wins rule across nested levels, and continuity at level boundaries.
 #include "render/envmap.h"
 
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 #include "tests/support/test_volumes.h"
 
 #include <gtest/gtest.h>

@@ -2,8 +2,8 @@
 #include "synth/dataset.h"
 
 #include "render/envmap.h"
-#include "render/image_io.h"
-#include "render/metrics.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
 #include "synth/oracle.h"
 #include "synth/scene_json.h"
 #include "tests/synth/synth_test_scenes.h"

@@ -1,7 +1,7 @@
 // Known answers for the baked light transport and the ground-truth renderers.
 #include "synth/radiance_field.h"
 
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 #include "synth/scene_render.h"
 #include "tests/synth/synth_test_scenes.h"
 

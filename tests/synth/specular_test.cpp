@@ -2,7 +2,7 @@
 // baked field and the envmaps. Known answers from a ray-sphere intersection done by hand.
 #include "synth/specular_shading.h"
 
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 #include "synth/scene_render.h"
 #include "tests/synth/synth_test_scenes.h"
 

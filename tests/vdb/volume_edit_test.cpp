@@ -4,7 +4,7 @@
 
 #include "core/errors.h"
 #include "render/envmap.h"
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 #include "tests/support/test_volumes.h"
 
 #include <gtest/gtest.h>

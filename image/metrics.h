@@ -10,7 +10,7 @@
 // one entry per pixel, or the functions throw InputError.
 #pragma once
 
-#include "render/image.h"
+#include "image/image.h"
 
 #include <cstdint>
 #include <limits>

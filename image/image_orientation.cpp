@@ -1,4 +1,4 @@
-#include "render/image_orientation.h"
+#include "image/image_orientation.h"
 
 #include <libexif/exif-data.h>
 

@@ -2,7 +2,7 @@
 // sets and results at a glance.
 #pragma once
 
-#include "render/image.h"
+#include "image/image.h"
 
 #include <vector>
 

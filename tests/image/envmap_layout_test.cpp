@@ -1,4 +1,4 @@
-#include "render/envmap_layout.h"
+#include "image/envmap_layout.h"
 
 #include <gtest/gtest.h>
 

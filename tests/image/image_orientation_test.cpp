@@ -1,8 +1,8 @@
 // Photos are read upright: a JPEG whose EXIF Orientation says "rotate" comes out of readImage
 // rotated. Known answer: a stored image of four coloured quadrants, and where each quadrant
 // must land for every orientation.
-#include "render/image_io.h"
-#include "render/image_orientation.h"
+#include "image/image_io.h"
+#include "image/image_orientation.h"
 #include "tests/support/exif_jpeg.h"
 
 #include <gtest/gtest.h>

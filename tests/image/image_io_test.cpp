@@ -1,4 +1,4 @@
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 #include "core/errors.h"
 

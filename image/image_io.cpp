@@ -1,8 +1,8 @@
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
-#include "render/image_orientation.h"
+#include "image/image_orientation.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>

@@ -1,4 +1,4 @@
-#include "render/contact_sheet.h"
+#include "image/contact_sheet.h"
 
 #include "core/errors.h"
 

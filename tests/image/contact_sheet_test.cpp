@@ -1,5 +1,5 @@
 // resizeImage and contactSheet with known answers.
-#include "render/contact_sheet.h"
+#include "image/contact_sheet.h"
 
 #include "core/errors.h"
 

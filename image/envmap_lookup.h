@@ -2,8 +2,8 @@
 // wrapping around in azimuth and clamping at the poles.
 #pragma once
 
-#include "render/envmap_layout.h"
-#include "render/image.h"
+#include "image/envmap_layout.h"
+#include "image/image.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // an unusable image or format request, ResourceError for absurd image sizes.
 #pragma once
 
-#include "render/image.h"
+#include "image/image.h"
 
 #include <cstdint>
 #include <string>
@@ -31,7 +31,7 @@ void writeImage(const ImageRGB& image, const std::string& path, float exposure =
 
 // Reads .exr (R, G, B of any pixel type, or Y replicated to grey) as linear values, and
 // .png / .jpg / .jpeg (8-bit sRGB) decoded to linear and turned upright by the JPEG's EXIF
-// Orientation (render/image_orientation.h).
+// Orientation (image/image_orientation.h).
 ImageRGB readImage(const std::string& path);
 
 }  // namespace lh

@@ -3,7 +3,7 @@
 // with orientation 6. Every photo is used upright: readImage applies the tag.
 #pragma once
 
-#include "render/image.h"
+#include "image/image.h"
 
 #include <string>
 

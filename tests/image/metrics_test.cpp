@@ -1,8 +1,8 @@
-#include "render/metrics.h"
+#include "image/metrics.h"
 
 #include "core/errors.h"
-#include "render/envmap_layout.h"
-#include "render/image_io.h"
+#include "image/envmap_layout.h"
+#include "image/image_io.h"
 
 #include <gtest/gtest.h>
 
