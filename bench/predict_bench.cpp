@@ -3,8 +3,8 @@
 // count libtorch is given. The paper configuration is timed with random weights: its cost
 // does not depend on their values. Target: the default (standard) under 5 s on 2 cores.
 #include "core/camera.h"
-#include "net/predictor.h"
 #include "image/image_io.h"
+#include "net/predictor.h"
 
 #include <benchmark/benchmark.h>
 

@@ -7,8 +7,9 @@
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "image/contact_sheet.h"
-#include "render/envmap.h"
 #include "image/image_io.h"
+#include "image/resample.h"
+#include "render/envmap.h"
 #include "render/insertion.h"
 
 #include <chrono>

@@ -3,17 +3,17 @@
 // `lighthouse predict --pairs LIST | --examples DIR -o OUT_DIR [--shard K/N]`: many pairs, one
 // model load; OUT_DIR/NAME.vdb each, and predictions.json (or a shard record, cli/shard_merge.h).
 #include "cli/cli_common.h"
-#include "cli/shard_merge.h"
 #include "cli/commands.h"
 #include "cli/common_options.h"
 #include "cli/net_commands.h"
+#include "cli/shard_merge.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/shard.h"
+#include "image/image_io.h"
 #include "net/predictor.h"
 #include "net/training_data.h"
 #include "render/envmap.h"
-#include "image/image_io.h"
 #include "vdb/volume_io.h"
 
 #include <nlohmann/json.hpp>

@@ -6,8 +6,8 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
-#include "render/envmap.h"
 #include "image/image_io.h"
+#include "render/envmap.h"
 
 #include <chrono>
 #include <iostream>

@@ -1,6 +1,6 @@
 #include "net/depth_range.h"
 
-#include "image/contact_sheet.h"
+#include "image/resample.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,11 +2,11 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "image/resample.h"
 #include "net/hdr.h"
 #include "net/mpi_resample.h"
 #include "net/psv.h"
 #include "net/tensor_image.h"
-#include "image/contact_sheet.h"
 #include "vdb/mpi.h"
 
 #include <filesystem>

@@ -3,11 +3,11 @@
 #pragma once
 
 #include "core/camera.h"
+#include "image/image.h"
 #include "net/config.h"
 #include "net/torch_pch.h"
 #include "net/unet2d.h"
 #include "net/unet3d.h"
-#include "image/image.h"
 #include "vdb/volume_layout.h"
 
 #include <vector>

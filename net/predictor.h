@@ -6,9 +6,9 @@
 #pragma once
 
 #include "core/camera.h"
+#include "image/image.h"
 #include "net/config.h"
 #include "net/depth_range.h"
-#include "image/image.h"
 #include "vdb/lighting_volume.h"
 #include "vdb/mpi.h"
 

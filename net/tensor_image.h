@@ -3,8 +3,8 @@
 #pragma once
 
 #include "core/camera.h"
-#include "net/torch_pch.h"
 #include "image/image.h"
+#include "net/torch_pch.h"
 
 namespace lh::net {
 

@@ -3,6 +3,9 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/random.h"
+#include "image/image_io.h"
+#include "image/metrics.h"
+#include "image/resample.h"
 #include "net/augment.h"
 #include "net/curve_plot.h"
 #include "net/device.h"
@@ -16,9 +19,6 @@
 #include "net/vgg_loss.h"
 #include "net/volume_render.h"
 #include "net/weight_average.h"
-#include "image/contact_sheet.h"
-#include "image/image_io.h"
-#include "image/metrics.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,9 +1,9 @@
 #include "net/training_data.h"
 
 #include "core/errors.h"
-#include "net/observed_mask.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
+#include "net/observed_mask.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -3,8 +3,8 @@
 #include "core/errors.h"
 #include "core/random.h"
 #include "core/sampling.h"
-#include "render/envmap.h"
 #include "image/envmap_lookup.h"
+#include "render/envmap.h"
 #include "render/object_tracer.h"
 
 #include <tbb/parallel_for.h>

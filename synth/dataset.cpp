@@ -2,14 +2,14 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/random.h"
 #include "image/contact_sheet.h"
 #include "image/image_io.h"
-#include "core/random.h"
 #include "synth/oracle.h"
 #include "synth/scene_generator.h"
-#include "vdb/volume_io.h"
 #include "synth/scene_json.h"
 #include "synth/scene_render.h"
+#include "vdb/volume_io.h"
 
 #include <nlohmann/json.hpp>
 

@@ -5,8 +5,8 @@
 #include "houdini_export/shells.h"
 
 #include "core/errors.h"
-#include "render/envmap.h"
 #include "image/metrics.h"
+#include "render/envmap.h"
 #include "vdb/example_volume.h"
 #include "vdb/volume_io.h"
 

@@ -3,9 +3,9 @@
 // finest wins looks at.
 #include "houdini_export/shells.h"
 
-#include "render/envmap.h"
 #include "image/envmap_layout.h"
 #include "image/metrics.h"
+#include "render/envmap.h"
 #include "vdb/example_volume.h"
 
 #include <gtest/gtest.h>

@@ -3,8 +3,8 @@
 #pragma once
 
 #include "core/camera.h"
-#include "net/config.h"
 #include "image/image.h"
+#include "net/config.h"
 
 #include <cmath>
 

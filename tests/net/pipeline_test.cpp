@@ -1,5 +1,7 @@
 // The differentiable pipeline stage by stage: plane sweep, MPI rendering, resampling onto the
 // cubes, and the training renderer against the C++ ray marcher.
+#include "image/envmap_layout.h"
+#include "image/image_io.h"
 #include "net/lighthouse_net.h"
 #include "net/mpi_render.h"
 #include "net/mpi_resample.h"
@@ -8,8 +10,6 @@
 #include "net/volume_export.h"
 #include "net/volume_render.h"
 #include "render/envmap.h"
-#include "image/envmap_layout.h"
-#include "image/image_io.h"
 #include "render/render_volume.h"
 #include "tests/net/net_test_scenes.h"
 #include "vdb/mpi.h"

@@ -2,10 +2,10 @@
 // targets, oracle volumes as dense cubes (at the oracle's resolution and pooled to half), and
 // the oneDNN convolutions against libtorch's own.
 #include "core/errors.h"
+#include "image/image_io.h"
 #include "net/augment.h"
 #include "net/fast_conv.h"
 #include "net/oracle_targets.h"
-#include "image/image_io.h"
 #include "vdb/lighting_volume.h"
 #include "vdb/volume_io.h"
 

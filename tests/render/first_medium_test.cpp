@@ -1,7 +1,7 @@
 #include "render/first_medium.h"
 
-#include "render/envmap.h"
 #include "image/envmap_layout.h"
+#include "render/envmap.h"
 #include "render/speed_error.h"
 #include "tests/support/test_volumes.h"
 #include "vdb/example_volume.h"

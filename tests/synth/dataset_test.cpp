@@ -1,9 +1,9 @@
 // Whole examples: determinism, stereo geometry, files, and the oracle's ceiling.
 #include "synth/dataset.h"
 
-#include "render/envmap.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
+#include "render/envmap.h"
 #include "synth/oracle.h"
 #include "synth/scene_json.h"
 #include "tests/synth/synth_test_scenes.h"

@@ -3,8 +3,8 @@
 #include "vdb/volume_edit.h"
 
 #include "core/errors.h"
-#include "render/envmap.h"
 #include "image/envmap_layout.h"
+#include "render/envmap.h"
 #include "tests/support/test_volumes.h"
 
 #include <gtest/gtest.h>
