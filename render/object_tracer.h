@@ -2,7 +2,7 @@
 // interpolated from the vertex normals.
 #pragma once
 
-#include "render/embree_scene.h"
+#include "raycast/embree_scene.h"
 #include "render/mesh.h"
 
 #include <limits>

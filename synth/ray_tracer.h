@@ -3,7 +3,7 @@
 // surface so normals, face parameters and textures are exact.
 #pragma once
 
-#include "render/embree_scene.h"
+#include "raycast/embree_scene.h"
 #include "synth/scene.h"
 
 #include <limits>

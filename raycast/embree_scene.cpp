@@ -1,4 +1,4 @@
-#include "render/embree_scene.h"
+#include "raycast/embree_scene.h"
 
 #include "core/errors.h"
 
