@@ -1,7 +1,7 @@
 // Object insertion speed: a 640x480 view of the example room with one inserted
 // object, lit per surface point through the 5 x 64^3 volume.
 // Run: build/bench/lighthouse_insert_bench [--benchmark_filter=...]
-#include "render/insertion.h"
+#include "insert/insertion.h"
 #include "render/view.h"
 #include "vdb/example_volume.h"
 

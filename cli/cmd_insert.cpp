@@ -9,8 +9,8 @@
 #include "image/contact_sheet.h"
 #include "image/image_io.h"
 #include "image/resample.h"
+#include "insert/insertion.h"
 #include "render/envmap.h"
-#include "render/insertion.h"
 
 #include <chrono>
 #include <iostream>

@@ -1,9 +1,9 @@
-// OBJ meshes (render/mesh.h loadMesh, tinyobjloader underneath), read by `insert --object`. A
+// OBJ meshes (insert/mesh.h loadMesh, tinyobjloader underneath), read by `insert --object`. A
 // bad file must be refused with a FileError or InputError; a mesh that loads must be usable:
 // finite unit-radius positions, unit normals, and indices that name existing vertices.
 #include "core/errors.h"
 #include "fuzz/fuzz_input.h"
-#include "render/mesh.h"
+#include "insert/mesh.h"
 
 #include <cmath>
 #include <cstddef>

@@ -1,11 +1,11 @@
-#include "render/insertion.h"
+#include "insert/insertion.h"
 
 #include "core/errors.h"
 #include "core/random.h"
 #include "core/sampling.h"
 #include "image/envmap_lookup.h"
+#include "insert/object_tracer.h"
 #include "render/envmap.h"
-#include "render/object_tracer.h"
 
 #include <tbb/parallel_for.h>
 

@@ -1,4 +1,4 @@
-#include "render/object_tracer.h"
+#include "insert/object_tracer.h"
 
 namespace lh {
 

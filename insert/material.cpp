@@ -1,4 +1,4 @@
-#include "render/material.h"
+#include "insert/material.h"
 
 #include "core/errors.h"
 #include "core/sampling.h"

@@ -2,8 +2,8 @@
 // interpolated from the vertex normals.
 #pragma once
 
+#include "insert/mesh.h"
 #include "raycast/embree_scene.h"
-#include "render/mesh.h"
 
 #include <limits>
 #include <vector>

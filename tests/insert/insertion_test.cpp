@@ -1,5 +1,5 @@
 // Object insertion with known answers.
-#include "render/insertion.h"
+#include "insert/insertion.h"
 
 #include "core/errors.h"
 #include "tests/support/test_volumes.h"

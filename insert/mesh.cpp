@@ -1,4 +1,4 @@
-#include "render/mesh.h"
+#include "insert/mesh.h"
 
 #include "core/errors.h"
 

@@ -14,8 +14,8 @@
 
 #include "core/camera.h"
 #include "image/image.h"
-#include "render/material.h"
-#include "render/mesh.h"
+#include "insert/material.h"
+#include "insert/mesh.h"
 #include "render/ray_marcher.h"
 
 #include <string>
