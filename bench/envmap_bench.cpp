@@ -3,7 +3,7 @@
 // With LIGHTHOUSE_BENCH_VOLUME=FILE.vdb set, BM_EnvmapFile also times that volume at the
 // random free-space points `lighthouse bench-envmap` uses (seed 1), per quadrature setting.
 #include "render/envmap.h"
-#include "render/speed_error.h"
+#include "render/free_space.h"
 #include "vdb/example_volume.h"
 #include "vdb/volume_io.h"
 

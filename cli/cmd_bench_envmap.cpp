@@ -4,7 +4,7 @@
 #include "cli/commands.h"
 #include "cli/common_options.h"
 #include "core/errors.h"
-#include "render/speed_error.h"
+#include "study/speed_error.h"
 
 #include <fstream>
 #include <iostream>

@@ -2,16 +2,17 @@
 // memory (active voxels, bytes in memory and on disk) against envmap error for several
 // sparsity bounds (vdb/sparsity.h), as memory_error.csv/.md/.svg, and where the bytes in
 // memory go (memory_breakdown.csv/.md). Any .vdb: oracle, predicted (dense fog: the query
-// points are then the least dense ones, see render/speed_error.h freeSpacePoints) or
+// points are then the least dense ones, see render/free_space.h) or
 // hand-made. With --dataset (a directory whose cameras.json lists ground-truth envmaps: a
 // synthetic example or data/demo_pair) it also reports the PSNR lost against ground truth.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "cli/common_options.h"
-#include "core/errors.h"
 #include "core/atomic_file.h"
+#include "core/errors.h"
+#include "render/envmap.h"
 #include "render/render_volume.h"
-#include "render/speed_error.h"
+#include "study/memory_error.h"
 #include "vdb/sparsity.h"
 
 #include <cmath>

@@ -8,7 +8,7 @@
 #include "cli/common_options.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
-#include "render/speed_error.h"
+#include "sparsify/bound_search.h"
 #include "vdb/sparsity.h"
 
 #include <cstdio>
@@ -49,7 +49,7 @@ void runSparsify(const SparsifyOptions& o) {
     if (o.tau) {
         options.tau = *o.tau;
     } else {
-        MemoryErrorOptions search;
+        BoundSearchOptions search;
         search.points = o.points;
         search.halfPrecision = o.half;
         const double required = requiredPsnrForLoss(o.targetDb, o.basePsnr);

@@ -28,7 +28,7 @@
 // Half precision on disk adds a relative error of 2^-11 per value on top (about 1e-3 C at most
 // along a ray), which the studies measure by rendering the half file read back.
 // The bound is a worst case (it ignores the attenuation T); the envmap error that results is
-// measured, not assumed: see measureMemoryAgainstError (render/speed_error.h) and
+// measured, not assumed: see measureMemoryAgainstError (study/memory_error.h) and
 // `lighthouse bench-sparsity`. PSNR is taken on sRGB-encoded values, whose slope is at most
 // 12.92, so PSNR against the unpruned envmaps >= -20 log10(12.92 tau).
 #pragma once

@@ -2,7 +2,7 @@
 
 #include "image/envmap_layout.h"
 #include "render/envmap.h"
-#include "render/speed_error.h"
+#include "render/free_space.h"
 #include "tests/support/test_volumes.h"
 #include "vdb/example_volume.h"
 

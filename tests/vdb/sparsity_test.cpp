@@ -4,7 +4,7 @@
 
 #include "core/errors.h"
 #include "render/envmap.h"
-#include "render/speed_error.h"
+#include "render/free_space.h"
 #include "tests/support/test_volumes.h"
 #include "vdb/volume_io.h"
 

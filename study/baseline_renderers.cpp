@@ -1,4 +1,4 @@
-#include "render/baseline_renderers.h"
+#include "study/baseline_renderers.h"
 
 #include "core/errors.h"
 #include "image/envmap_layout.h"

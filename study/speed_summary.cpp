@@ -1,4 +1,4 @@
-#include "render/speed_summary.h"
+#include "study/speed_summary.h"
 
 #include "render/ray_marcher.h"
 

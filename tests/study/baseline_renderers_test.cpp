@@ -1,8 +1,7 @@
 // The renderers we measure against agree with ours where the answer is known.
-#include "render/baseline_renderers.h"
+#include "study/baseline_renderers.h"
 
 #include "image/envmap_layout.h"
-#include "render/speed_error.h"
 #include "tests/support/test_volumes.h"
 
 #include <gtest/gtest.h>
@@ -31,11 +30,6 @@ TEST(BaselineRenderers, AgreeWithTheAnalyticShellAlongTheAxes) {
     // Sphere shells of 2.83/256 units and half-voxel steps: a few percent at most.
     EXPECT_NEAR(spheres.at(int(at.column), int(at.row))[0], expected, 0.03 * expected);
     EXPECT_NEAR(fixed.at(int(at.column), int(at.row))[0], expected, 0.03 * expected);
-}
-
-TEST(BaselineRenderers, FreeSpacePointsAreEmpty) {
-    const RenderVolume prepared(shellVolume());
-    for (const Vec3d& p : freeSpacePoints(prepared, 20, 3)) EXPECT_EQ(prepared.sampleWorld(p).sigma, 0.f);
 }
 
 }  // namespace

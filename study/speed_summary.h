@@ -1,11 +1,11 @@
-// What the speed targets ask of one speed-against-error run (render/speed_error.h): our
+// What the speed targets ask of one speed-against-error run (study/speed_error.h): our
 // fastest setting within an error bound, the default's standing, and, for every setting of the
 // paper's method, our fastest setting at equal or lower error and how many times faster it is.
 // Only rows of one run are compared: their times were taken on the same machine in the same
 // rounds, so their ratios hold even when the machine's absolute speed drifts.
 #pragma once
 
-#include "render/speed_error.h"
+#include "study/speed_error.h"
 
 #include <optional>
 #include <string>
