@@ -1,5 +1,5 @@
-// Line plots as PNG pictures (training curves), drawn with stb_easy_font labels so that no
-// plotting package is needed. Each series gets its own panel with its own y range.
+// The training curves as a PNG picture, drawn by the project's plot writer (image/plot.h).
+// Each series gets its own panel with its own y range; all panels share the x range.
 #pragma once
 
 #include <string>

@@ -5,9 +5,9 @@
 #include "core/errors.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
+#include "image/plot.h"
 #include "render/envmap.h"
 #include "render/free_space.h"
-#include "render/svg_plot.h"
 #include "sparsify/envmap_error.h"
 #include "vdb/sparsity.h"
 

@@ -1,8 +1,8 @@
 #include "study/speed_error.h"
 
 #include "core/atomic_file.h"
+#include "image/plot.h"
 #include "render/free_space.h"
-#include "render/svg_plot.h"
 #include "sparsify/envmap_error.h"
 #include "study/baseline_renderers.h"
 #include "study/speed_summary.h"

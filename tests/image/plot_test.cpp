@@ -1,8 +1,9 @@
-// The report plots: every point and marker lands inside the frame.
-#include "render/svg_plot.h"
+// The plots: every point and marker lands inside the frame, in the SVG and in the picture alike.
+#include "image/plot.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <regex>
 
 namespace lh {
@@ -67,6 +68,39 @@ TEST(SvgPlot, TextIsEscaped) {
     EXPECT_NE(svg.find(">a&apos;b<"), std::string::npos) << svg;
     // Outside tags, no '<' is followed by anything but a tag name or '/'.
     EXPECT_FALSE(std::regex_search(svg, std::regex("<[^a-z/]"))) << svg;
+}
+
+// The picture is the same layout as the SVG: each dot is drawn, in its colour, where the SVG
+// puts its circle.
+TEST(PlotImage, DotsLandWhereTheSvgPutsThem) {
+    PlotSeries s{"ours", "red", {{10, 1e-3, "a"}, {100, 1e-5, "b"}}, false, {}};
+    const PlotAxis x{"ms", true}, y{"rmse", true, 10, 1e-6};
+    const std::string svg = svgPlot(x, y, {s});
+    const ImageRGB image = plotImage(x, y, {s});
+    ASSERT_EQ(image.width, 640);
+    ASSERT_EQ(image.height, 420);
+    const std::regex circle("<circle cx='([-0-9.e]+)' cy='([-0-9.e]+)'");
+    int dots = 0;
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator(); ++it, ++dots) {
+        const float* p = image.at(int(std::lround(std::stod((*it)[1].str()))), int(std::lround(std::stod((*it)[2].str()))));
+        EXPECT_FLOAT_EQ(p[0], 1.f);
+        EXPECT_FLOAT_EQ(p[1], 0.f);
+        EXPECT_FLOAT_EQ(p[2], 0.f);
+    }
+    EXPECT_EQ(dots, 2);
+    EXPECT_FLOAT_EQ(image.at(1, 1)[0], 1.f);  // white background
+}
+
+// A linear axis without a step gets a round one (1, 2 or 5 times a power of ten) that cuts
+// the data's range into at most 5 steps: 0.05 to 0.3 gets grid lines every 0.05.
+TEST(PlotImage, ALinearAxisWithoutAStepRoundsTheRange) {
+    PlotSeries s{"loss", "#1f77b4", {{0, 0.05, ""}, {1, 0.3, ""}}, true, {}, /*dots=*/false};
+    const std::string svg = svgPlot({"iteration", false, 1}, {"", false, 0}, {s});
+    EXPECT_EQ(svg.find("<circle"), std::string::npos);
+    EXPECT_NE(svg.find("<polyline"), std::string::npos);
+    for (const char* label : {">0.05<", ">0.1<", ">0.15<", ">0.2<", ">0.25<", ">0.3<"})
+        EXPECT_NE(svg.find(label), std::string::npos) << label << " in " << svg;
+    EXPECT_EQ(svg.find(">0.35<"), std::string::npos) << svg;
 }
 
 }  // namespace
