@@ -4,6 +4,7 @@
 // implemented in image/metrics.h.
 #include "cli/commands.h"
 #include "core/atomic_file.h"
+#include "core/dataset_files.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "image/image_io.h"
@@ -122,7 +123,7 @@ void requireDirectory(const std::string& path, const std::string& what) {
 std::vector<EnvmapPair> findPairs(const std::string& predDir, const std::string& gtDir) {
     requireDirectory(gtDir, "ground-truth directory");
     requireDirectory(predDir, "prediction directory");
-    static const std::regex envmapName(R"(env_[0-9]+\.exr)");
+    static const std::regex envmapName(dataset::kEnvmapExrPattern);
     std::vector<EnvmapPair> pairs;
     std::error_code ec;
     for (fs::recursive_directory_iterator it(gtDir, ec), end; !ec && it != end; it.increment(ec)) {
@@ -132,7 +133,7 @@ std::vector<EnvmapPair> findPairs(const std::string& predDir, const std::string&
             !std::regex_match(gt.filename().string(), envmapName))
             continue;
         const fs::path relative = gt.lexically_relative(gtDir);
-        const fs::path mask = gt.parent_path() / (gt.stem().string() + "_mask.png");
+        const fs::path mask = gt.parent_path() / dataset::maskPng(gt.stem().string());
         pairs.push_back({relative.generic_string(), (fs::path(predDir) / relative).string(),
                          gt.string(), fs::exists(mask, typeError) ? mask.string() : ""});
     }

@@ -3,6 +3,7 @@
 #include "cli/commands.h"
 #include "cli/common_options.h"
 #include "core/atomic_file.h"
+#include "core/dataset_files.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "image/image_io.h"
@@ -38,14 +39,14 @@ void runOracle(const OracleCommandOptions& o) {
     if (!fs::is_directory(dir))
         throw FileError("'" + o.sceneDir + "' is not an example directory (expected scene.json and cameras.json)");
     // The oracle may go inside the example (synth puts oracle.vdb there), but not onto what it reads.
-    const std::vector<NamedInput> inputs = {{(dir / "scene.json").string(), "the example's scene.json"},
-                                            {(dir / "cameras.json").string(), "the example's cameras.json"},
+    const std::vector<NamedInput> inputs = {{(dir / dataset::kScene).string(), "the example's scene.json"},
+                                            {(dir / dataset::kCameras).string(), "the example's cameras.json"},
                                             {o.hdriDir, "--hdri-dir"}};
     requireOutputIsNotAnInput(o.output, "-o", inputs);
     requirePositiveExposure(o.exposure);
     synth::BakeOptions bake;
-    const synth::Scene scene = synth::loadScene((dir / "scene.json").string(), &bake);
-    const CamerasFile cameras = loadCamerasFile((dir / "cameras.json").string());
+    const synth::Scene scene = synth::loadScene((dir / dataset::kScene).string(), &bake);
+    const CamerasFile cameras = loadCamerasFile((dir / dataset::kCameras).string());
     if (!o.envmapsOut.empty())
         for (const auto& e : cameras.envmaps) {  // the ground-truth envmaps are read for their size
             const std::vector<NamedInput> truth = {{(dir / e.file).string(), "the example's " + e.file}};
@@ -53,7 +54,7 @@ void runOracle(const OracleCommandOptions& o) {
             requireOutputIsNotAnInput(out, "--envmaps-out", truth);
             if (o.alsoPng) requireOutputIsNotAnInput(withExtension(out, ".png"), "--png", truth);
         }
-    if (!cameras.far) throw InputError("'" + (dir / "cameras.json").string() + "' has no 'far' depth");
+    if (!cameras.far) throw InputError("'" + (dir / dataset::kCameras).string() + "' has no 'far' depth");
     const VolumeLayout layout = VolumeLayout::fromFarDepth(*cameras.far, o.levels, o.resolution);
 
     std::cerr << "oracle: baking the scene's light (" << scene.primitives.size() << " primitives)\n";

@@ -8,6 +8,7 @@
 #include "cli/net_commands.h"
 #include "cli/shard_merge.h"
 #include "core/atomic_file.h"
+#include "core/dataset_files.h"
 #include "core/errors.h"
 #include "core/shard.h"
 #include "image/image_io.h"
@@ -82,8 +83,8 @@ std::vector<BatchItem> batchItems(const PredictOptions& o) {
     } else {
         for (const std::string& dir : net::listExamples(o.examples)) {
             const fs::path d(dir);
-            items.push_back({d.filename().string(), (d / "ref.png").string(), (d / "src.png").string(),
-                             (d / "cameras.json").string()});
+            items.push_back({d.filename().string(), (d / dataset::viewPng("ref")).string(),
+                             (d / dataset::viewPng("src")).string(), (d / dataset::kCameras).string()});
         }
     }
     std::set<std::string> names;

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/camera.h"
+#include "core/dataset_files.h"
 #include "core/errors.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
@@ -29,12 +30,12 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(const LightingVolume& volu
     std::vector<Vec3d> gtPoints;
     std::vector<ImageRGB> gt;
     if (!o.datasetDir.empty()) {
-        const CamerasFile cameras = loadCamerasFile(o.datasetDir + "/cameras.json");
+        const CamerasFile cameras = loadCamerasFile(o.datasetDir + "/" + dataset::kCameras);
         for (const auto& e : cameras.envmaps) {
             gt.push_back(readImage(o.datasetDir + "/" + e.file));
             gtPoints.push_back(e.position);
         }
-        if (gt.empty()) throw InputError(o.datasetDir + "/cameras.json lists no envmaps");
+        if (gt.empty()) throw InputError(o.datasetDir + "/" + dataset::kCameras + " lists no envmaps");
     }
     const auto gtPsnr = [&](const RenderVolume& v) {
         double sum = 0;

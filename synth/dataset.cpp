@@ -1,6 +1,7 @@
 #include "synth/dataset.h"
 
 #include "core/atomic_file.h"
+#include "core/dataset_files.h"
 #include "core/errors.h"
 #include "core/random.h"
 #include "image/contact_sheet.h"
@@ -145,14 +146,14 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             fs::remove_all(temp);
             fs::create_directories(temp);
             const auto file = [&](const std::string& name) { return (temp / name).string(); };
-            writeImage(ref, file("ref.exr"));
-            writePng(ref, file("ref.png"));
+            writeImage(ref, file(dataset::viewExr("ref")));
+            writePng(ref, file(dataset::viewPng("ref")));
             for (const auto& [name, camera] : {std::pair{"src", &rig.src}, std::pair{"tgt", &rig.tgt}}) {
                 const ImageRGB view = renderSceneView(tracer, field, *camera, o.supersample);
-                writeImage(view, file(std::string(name) + ".exr"));
-                writePng(view, file(std::string(name) + ".png"));
+                writeImage(view, file(dataset::viewExr(name)));
+                writePng(view, file(dataset::viewPng(name)));
             }
-            writeImage(depth, file("depth.exr"));
+            writeImage(depth, file(dataset::kDepth));
             CamerasFile cameras;
             cameras.ref = rig.ref;
             cameras.src = rig.src;
@@ -161,21 +162,21 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             cameras.near = double(depths[depths.size() / 100]);
             cameras.far = double(depths[depths.size() * 99 / 100]);
             for (std::size_t k = 0; k < points.size(); ++k) {
-                const std::string stem = "env_" + std::to_string(k);
+                const std::string stem = dataset::envmapStem(k);
                 SceneEnvmap env = renderSceneEnvmap(tracer, field, points[k], o.envWidth, o.envHeight, rig.ref, o.supersample);
-                writeImage(env.radiance, file(stem + ".exr"));
-                writePng(env.radiance, file(stem + ".png"));
-                writePng(maskImage(env.observed, o.envWidth, o.envHeight), file(stem + "_mask.png"));
-                writeImage(env.hitPositions, file(stem + "_pos.exr"));
-                cameras.envmaps.push_back({points[k], stem + ".exr", stem + "_pos.exr"});
+                writeImage(env.radiance, file(dataset::envmapExr(k)));
+                writePng(env.radiance, file(dataset::envmapPng(k)));
+                writePng(maskImage(env.observed, o.envWidth, o.envHeight), file(dataset::maskPng(stem)));
+                writeImage(env.hitPositions, file(dataset::positionsExr(stem)));
+                cameras.envmaps.push_back({points[k], dataset::envmapExr(k), dataset::positionsExr(stem)});
             }
-            writeTextFile(file("cameras.json"), camerasToJson(cameras));
-            writeTextFile(file("scene.json"), sceneToJson(scene, o.bake));
+            writeTextFile(file(dataset::kCameras), camerasToJson(cameras));
+            writeTextFile(file(dataset::kScene), sceneToJson(scene, o.bake));
             if (o.oracleLevels > 0) {
                 const VolumeLayout layout = VolumeLayout::fromFarDepth(*cameras.far, o.oracleLevels, o.oracleResolution);
                 VolumeSaveOptions half;
                 half.halfPrecision = true;
-                saveVolume(file("oracle.vdb"), oracleVolume(scene, field, layout), half);
+                saveVolume(file(dataset::kOracle), oracleVolume(scene, field, layout), half);
             }
             fs::remove_all(final);
             fs::rename(temp, final);
@@ -215,8 +216,8 @@ void writeContactSheet(const std::string& out, const std::vector<std::string>& d
     std::vector<std::vector<ImageRGB>> rows;
     for (std::size_t i = 0; i < std::min<std::size_t>(4, dirs.size()); ++i) {
         const fs::path d(dirs[i]);
-        rows.push_back({readImage((d / "ref.exr").string()), readImage((d / "src.exr").string()),
-                        readImage((d / "env_0.exr").string())});
+        rows.push_back({readImage((d / dataset::viewExr("ref")).string()), readImage((d / dataset::viewExr("src")).string()),
+                        readImage((d / dataset::envmapExr(0)).string())});
     }
     writePng(contactSheet(rows, 120), (fs::path(out) / "contact_sheet.png").string());
 }
@@ -239,9 +240,9 @@ void writeDataset(const SynthOptions& o, const std::function<void(int, int, doub
         const std::string dir = (fs::path(o.out) / id).string();
         const uint64_t seed = exampleSeed(o.split, o.seed + i);
         ExampleSummary s;
-        if (fs::exists(fs::path(dir) / "scene.json")) {  // complete from an earlier run
+        if (fs::exists(fs::path(dir) / dataset::kScene)) {  // complete from an earlier run
             s.id = id;
-            s.seed = loadScene((fs::path(dir) / "scene.json").string()).seed;
+            s.seed = loadScene((fs::path(dir) / dataset::kScene).string()).seed;
         } else {
             s = writeExample(seed, dir, o, panoramas);
         }
@@ -289,7 +290,7 @@ int mergeDatasetShards(const std::string& dir) {
         if (examples[std::size_t(i)].is_null())
             throw FileError("shard records in '" + dir + "' lack example " + exampleId(i));
         const fs::path example = fs::path(dir) / exampleId(i);
-        if (!fs::is_regular_file(example / "scene.json"))
+        if (!fs::is_regular_file(example / dataset::kScene))
             throw FileError("example '" + example.string() + "' listed by a shard record is missing or incomplete");
         dirs.push_back(example.string());
     }
