@@ -3,6 +3,7 @@
 #include "net/eval_table.h"
 
 #include "core/atomic_file.h"
+#include "core/dataset_files.h"
 #include "core/errors.h"
 #include "image/contact_sheet.h"
 #include "image/image_io.h"
@@ -58,7 +59,7 @@ void meanColour(const ImageRGB& image, float out[3]) {
 // line, which one lacks it and that the oracle row is left out.
 bool hasSceneFiles(const std::vector<std::string>& dirs, std::ostream& progress) {
     for (const std::string& dir : dirs)
-        if (!fs::is_regular_file(fs::path(dir) / "scene.json")) {
+        if (!fs::is_regular_file(fs::path(dir) / dataset::kScene)) {
             progress << "eval: no oracle row: '" << dir << "' has no scene.json (the scene's geometry and "
                      << "light the oracle is baked from); the other rows are computed as usual\n";
             return false;
@@ -119,7 +120,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         std::unique_ptr<RenderVolume> oracle;
         if (withOracle) {
             synth::BakeOptions bake;
-            const synth::Scene scene = synth::loadScene((fs::path(dirs[s]) / "scene.json").string(), &bake);
+            const synth::Scene scene = synth::loadScene((fs::path(dirs[s]) / dataset::kScene).string(), &bake);
             for (const auto& w : scene.windows) panoramas->get(w.panorama);
             const synth::RayTracer tracer(scene);
             const synth::RadianceField field(scene, tracer, *panoramas, bake);

@@ -1,6 +1,7 @@
 #include "net/trainer.h"
 
 #include "core/atomic_file.h"
+#include "core/dataset_files.h"
 #include "core/errors.h"
 #include "core/random.h"
 #include "image/image_io.h"
@@ -295,12 +296,12 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
     }
     if (!direct) return p;
     const fs::path dir(directory);
-    if (fs::is_regular_file(dir / "depth.exr"))
-        p.refDepth = imageToTensor(resizeImage(readImage((dir / "depth.exr").string()), config.width, config.height))
+    if (fs::is_regular_file(dir / dataset::kDepth))
+        p.refDepth = imageToTensor(resizeImage(readImage((dir / dataset::kDepth).string()), config.width, config.height))
                          .narrow(1, 0, 1)
                          .to(device);
-    if (fs::is_regular_file(dir / "oracle.vdb")) {
-        p.oracle = loadOracleCubes((dir / "oracle.vdb").string(), p.inputs.layout, device);
+    if (fs::is_regular_file(dir / dataset::kOracle)) {
+        p.oracle = loadOracleCubes((dir / dataset::kOracle).string(), p.inputs.layout, device);
         const auto gains = torch::tensor({float(a.factor(0)), float(a.factor(1)), float(a.factor(2)), 1.f})
                                .view({1, 4, 1, 1, 1})
                                .to(device);

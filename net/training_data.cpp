@@ -1,5 +1,6 @@
 #include "net/training_data.h"
 
+#include "core/dataset_files.h"
 #include "core/errors.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
@@ -16,7 +17,7 @@ namespace lh::net {
 namespace {
 
 // The reference view's z-depth, under the names the two data sets use.
-constexpr const char* kDepthFiles[] = {"ref_depth.exr", "depth.exr"};
+constexpr const char* kDepthFiles[] = {dataset::kCyclesDepth, dataset::kDepth};
 
 // One envmap's observed mask: the shipped env_K_mask.png, or one computed from the
 // first-hit positions and the reference depth (read once per example, into `depth`).
@@ -24,7 +25,7 @@ std::vector<std::uint8_t> observedMask(const fs::path& dir, const EnvmapSample& 
                                        const ImageRGB& envmap, const PinholeCamera& reference,
                                        std::optional<ImageRGB>& depth) {
     const std::string stem = fs::path(sample.file).stem().string();
-    const fs::path maskFile = dir / (stem + "_mask.png");
+    const fs::path maskFile = dir / dataset::maskPng(stem);
     if (fs::is_regular_file(maskFile)) return loadMask(maskFile.string(), envmap.width, envmap.height);
 
     const fs::path positionFile = dir / sample.positionFile;
@@ -59,7 +60,7 @@ std::vector<std::string> listExamples(const std::string& dataDir) {
     for (const auto& entry : fs::directory_iterator(dataDir))
         // Hidden directories are examples still being written by `synth` (".ID.partial").
         if (entry.is_directory() && entry.path().filename().string().rfind('.', 0) != 0 &&
-            fs::is_regular_file(entry.path() / "cameras.json"))
+            fs::is_regular_file(entry.path() / dataset::kCameras))
             out.push_back(entry.path().string());
     std::sort(out.begin(), out.end());
     if (out.empty())
@@ -71,12 +72,12 @@ TrainingExample loadExample(const std::string& directory, bool withMasks) {
     const fs::path dir(directory);
     TrainingExample ex;
     ex.directory = directory;
-    ex.cameras = loadCamerasFile((dir / "cameras.json").string());
+    ex.cameras = loadCamerasFile((dir / dataset::kCameras).string());
     if (!ex.cameras.src || !ex.cameras.tgt || !ex.cameras.near || !ex.cameras.far)
-        throw FileError("'" + (dir / "cameras.json").string() + "' lacks src, tgt, near or far: not a training example");
-    ex.ref = readImage((dir / "ref.png").string());
-    ex.src = readImage((dir / "src.png").string());
-    ex.tgt = readImage((dir / "tgt.png").string());
+        throw FileError("'" + (dir / dataset::kCameras).string() + "' lacks src, tgt, near or far: not a training example");
+    ex.ref = readImage((dir / dataset::viewPng("ref")).string());
+    ex.src = readImage((dir / dataset::viewPng("src")).string());
+    ex.tgt = readImage((dir / dataset::viewPng("tgt")).string());
     std::optional<ImageRGB> depth;  // read when the first mask must be computed
     for (const auto& e : ex.cameras.envmaps) {
         ex.envmaps.push_back(readImage((dir / e.file).string()));
