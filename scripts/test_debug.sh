@@ -9,8 +9,8 @@ cd "$(dirname "$0")/.."
 jobs=${JOBS:-2}
 cmake -S . -B build-debug -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
   -DLIGHTHOUSE_WITH_TORCH=OFF -DLIGHTHOUSE_BUILD_BENCH=OFF >/dev/null
-cmake --build build-debug -- -j"$jobs" core_tests vdb_tests image_tests render_tests
-for suite in core_tests vdb_tests image_tests render_tests; do
+cmake --build build-debug -- -j"$jobs" core_tests vdb_tests vdb_envmap_tests image_tests render_tests
+for suite in core_tests vdb_tests vdb_envmap_tests image_tests render_tests; do
   echo "==> $suite (debug, LH_DCHECK on)"
   build-debug/tests/$suite --gtest_brief=1
 done
