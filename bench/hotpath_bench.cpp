@@ -23,7 +23,8 @@ std::vector<lh::Vec3d> indexPoints(const lh::RenderLevel& level, int n) {
     for (int i = 0; i < n; ++i) {
         lh::Vec3d q;
         for (int a = 0; a < 3; ++a)
-            q[a] = std::uniform_real_distribution<double>(level.domainLo[a], level.domainHi[a])(rng);
+            q[a] =
+                std::uniform_real_distribution<double>(level.domainLo[a], level.domainHi[a])(rng);
         points.push_back(q);
     }
     return points;
@@ -70,7 +71,8 @@ void BM_SampleWorld(benchmark::State& state) {
     const lh::RenderVolume& volume = exampleRoom();
     const auto& level = volume.levels[1];
     std::vector<lh::Vec3d> world;
-    for (const auto& q : indexPoints(level, 4096)) world.push_back(level.indexToWorld * (q - level.indexOffset));
+    for (const auto& q : indexPoints(level, 4096))
+        world.push_back(level.indexToWorld * (q - level.indexOffset));
     std::size_t i = 0;
     for (auto _ : state) benchmark::DoNotOptimize(volume.sampleWorld(world[i++ & 4095]));
     state.SetItemsProcessed(state.iterations());
@@ -84,7 +86,8 @@ void BM_PartitionRay(benchmark::State& state) {
     lh::Piece pieces[lh::RenderVolume::kMaxPieces];
     std::size_t i = 0;
     for (auto _ : state) {
-        benchmark::DoNotOptimize(volume.partitionRay(lh::Vec3d(0.1, 0.2, 2.0), dirs[i++ & 4095], pieces));
+        benchmark::DoNotOptimize(
+            volume.partitionRay(lh::Vec3d(0.1, 0.2, 2.0), dirs[i++ & 4095], pieces));
     }
     state.SetItemsProcessed(state.iterations());
 }
@@ -101,10 +104,12 @@ void BM_MarchRay(benchmark::State& state) {
     o.skipEmptySpace = state.range(1) != 0;
     std::size_t i = 0;
     for (auto _ : state) {
-        benchmark::DoNotOptimize(lh::marchRay(volume, lh::Vec3d(0.1, 0.2, 2.0), dirs[i++ & 4095], o));
+        benchmark::DoNotOptimize(
+            lh::marchRay(volume, lh::Vec3d(0.1, 0.2, 2.0), dirs[i++ & 4095], o));
     }
     state.SetItemsProcessed(state.iterations());
-    state.SetLabel((o.cellNodes ? std::to_string(o.cellNodes) + " Gauss nodes/cell" : "step " + std::to_string(o.stepVoxels)) +
+    state.SetLabel((o.cellNodes ? std::to_string(o.cellNodes) + " Gauss nodes/cell"
+                                : "step " + std::to_string(o.stepVoxels)) +
                    (o.skipEmptySpace ? ", skipping" : ", no skipping"));
 }
 BENCHMARK(BM_MarchRay)->Args({0, 1})->Args({50, 1})->Args({100, 1})->Args({50, 0});
@@ -113,12 +118,16 @@ BENCHMARK(BM_MarchRay)->Args({0, 1})->Args({50, 1})->Args({100, 1})->Args({50, 0
 void BM_MarchRayThickMedium(benchmark::State& state) {
     static const lh::RenderVolume cube = [] {
         lh::LightingVolume v = lh::LightingVolume::fromLayout(lh::VolumeLayout{4.0, 1, 64});
-        v.fillLevel(0, [](const lh::Vec3d&) { return lh::MediumSample{50.f, openvdb::Vec3s(1.f)}; });
+        v.fillLevel(0, [](const lh::Vec3d&) {
+            return lh::MediumSample{50.f, openvdb::Vec3s(1.f)};
+        });
         return lh::RenderVolume(v);
     }();
     const auto dirs = unitDirections(4096);
     std::size_t i = 0;
-    for (auto _ : state) benchmark::DoNotOptimize(lh::marchRay(cube, lh::Vec3d(0.0), dirs[i++ & 4095], lh::MarchOptions{}));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(
+            lh::marchRay(cube, lh::Vec3d(0.0), dirs[i++ & 4095], lh::MarchOptions{}));
     state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_MarchRayThickMedium);

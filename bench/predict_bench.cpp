@@ -1,7 +1,8 @@
 // Time of `predict` (the network part: plane sweep, MPI network, resampling, completion, and
-// the conversion to OpenVDB grids) for the `standard`, `small` and `paper` configurations on the bundled 320x240 stereo pair, with the thread
-// count libtorch is given. The paper configuration is timed with random weights: its cost
-// does not depend on their values. Target: the default (standard) under 5 s on 2 cores.
+// the conversion to OpenVDB grids) for the `standard`, `small` and `paper` configurations on the
+// bundled 320x240 stereo pair, with the thread count libtorch is given. The paper configuration is
+// timed with random weights: its cost does not depend on their values. Target: the default
+// (standard) under 5 s on 2 cores.
 #include "core/camera.h"
 #include "image/image_io.h"
 #include "net/predictor.h"

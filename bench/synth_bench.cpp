@@ -1,8 +1,8 @@
 // Synthetic data generation speed: Embree ray casting, the light bake, and whole examples at
 // the `small` network configuration's sizes (views 160x120, envmaps 120x60).
 // Run: build/bench/lighthouse_synth_bench [--benchmark_filter=...]
-#include "synth/dataset.h"
 #include "core/random.h"
+#include "synth/dataset.h"
 #include "synth/scene_generator.h"
 
 #include <benchmark/benchmark.h>
@@ -25,11 +25,13 @@ void BM_RayCast(benchmark::State& state) {
     Random rng(1);
     std::size_t hits = 0;
     for (auto _ : state) {
-        const double z = 1 - 2 * rng.uniform(), phi = 2 * M_PI * rng.uniform(), r = std::sqrt(1 - z * z);
+        const double z = 1 - 2 * rng.uniform(), phi = 2 * M_PI * rng.uniform(),
+                     r = std::sqrt(1 - z * z);
         hits += tracer.intersect(Vec3d(0.0), Vec3d(r * std::cos(phi), r * std::sin(phi), z)).hit;
     }
     benchmark::DoNotOptimize(hits);
-    state.counters["rays/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["rays/s"] =
+        benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
     state.SetLabel(std::to_string(tracer.triangleCount()) + " triangles, one thread");
 }
 BENCHMARK(BM_RayCast);
@@ -55,8 +57,10 @@ void BM_SmallExample(benchmark::State& state) {
     const auto dir = std::filesystem::temp_directory_path() / "lh_synth_bench";
     std::filesystem::create_directories(dir);
     uint64_t index = 0;
-    for (auto _ : state) writeExample(exampleSeed("train", index++), (dir / "example").string(), o, panoramas());
-    state.counters["examples/hour"] = benchmark::Counter(3600.0 * state.iterations(), benchmark::Counter::kIsRate);
+    for (auto _ : state)
+        writeExample(exampleSeed("train", index++), (dir / "example").string(), o, panoramas());
+    state.counters["examples/hour"] =
+        benchmark::Counter(3600.0 * state.iterations(), benchmark::Counter::kIsRate);
     std::filesystem::remove_all(dir);
 }
 BENCHMARK(BM_SmallExample)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(20);

@@ -18,8 +18,7 @@ std::string number(double v) {
     return ss.str();
 }
 
-const ColmapImage& findImage(const ColmapModel& model, const std::string& name,
-                             const char* role) {
+const ColmapImage& findImage(const ColmapModel& model, const std::string& name, const char* role) {
     // Exact name first (COLMAP names are relative to its image folder, e.g. "left/a.jpg"),
     // then a unique match on the file name alone, so "a.jpg" finds "left/a.jpg".
     for (const auto& [id, im] : model.images)
@@ -48,8 +47,8 @@ const ColmapImage& findImage(const ColmapModel& model, const std::string& name,
                          "'; give the full name as in images.txt");
     throw InputError(std::string("--") + role + " image '" + name +
                      "' is not in the COLMAP model '" + model.dir + "' (" +
-                     std::to_string(model.images.size()) + " images: " +
-                     (known.empty() ? "none" : known) + ")");
+                     std::to_string(model.images.size()) +
+                     " images: " + (known.empty() ? "none" : known) + ")");
 }
 
 // World-to-camera of a COLMAP image as a rotation and translation.
@@ -81,8 +80,8 @@ Mat3d rotationFromQuaternion(const double q[4]) {
 
 PinholeCamera pinholeFromColmap(const ColmapCamera& c, const std::string& imageName) {
     PinholeCamera cam;
-    const std::string where = "image '" + imageName + "' (COLMAP camera " +
-                              std::to_string(c.id) + ", " + c.model + ")";
+    const std::string where =
+        "image '" + imageName + "' (COLMAP camera " + std::to_string(c.id) + ", " + c.model + ")";
     if (c.width < 1 || c.height < 1 || c.width > 65536 || c.height > 65536)
         throw InputError(where + ": image size " + std::to_string(c.width) + "x" +
                          std::to_string(c.height) + " is not in [1, 65536]");
@@ -99,7 +98,8 @@ PinholeCamera pinholeFromColmap(const ColmapCamera& c, const std::string& imageN
     for (std::size_t i = focal + 2; undistorted && i < c.params.size(); ++i)
         undistorted = c.params[i] == 0.0;
     if (!undistorted)
-        throw InputError(where + ": only PINHOLE and SIMPLE_PINHOLE cameras are supported; "
+        throw InputError(where +
+                         ": only PINHOLE and SIMPLE_PINHOLE cameras are supported; "
                          "undistort the images first (colmap image_undistorter --image_path "
                          "IMAGES --input_path MODEL --output_path OUT) and use OUT/sparse with "
                          "the images in OUT/images");
@@ -122,14 +122,12 @@ ColmapPairResult convertColmapPair(const ColmapModel& model, const ColmapPairOpt
     const ColmapImage& ref = findImage(model, o.ref, "ref");
     const ColmapImage& src = findImage(model, o.src, "src");
     if (ref.id == src.id)
-        throw InputError("--ref and --src name the same image '" + ref.name +
-                         "' (zero baseline)");
+        throw InputError("--ref and --src name the same image '" + ref.name + "' (zero baseline)");
     auto cameraOf = [&](const ColmapImage& im) -> const ColmapCamera& {
         const auto it = model.cameras.find(im.cameraId);
         if (it == model.cameras.end())
-            throw InputError("image '" + im.name + "' uses camera " +
-                             std::to_string(im.cameraId) + ", which is not in the COLMAP model '" +
-                             model.dir + "'");
+            throw InputError("image '" + im.name + "' uses camera " + std::to_string(im.cameraId) +
+                             ", which is not in the COLMAP model '" + model.dir + "'");
         return it->second;
     };
 

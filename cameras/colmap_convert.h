@@ -23,17 +23,17 @@ struct ColmapPairOptions {
     std::optional<double> baseline;
     // Depth range (scene units, after scaling); each one given replaces its estimate.
     std::optional<double> near, far;
-    int minPoints = 20;                // fewer 3D points in front of ref -> no estimate
-    double lowPercentile = 1.0;        // near = this percentile of the points' depths
-    double highPercentile = 99.0;      // far = this one
+    int minPoints = 20;            // fewer 3D points in front of ref -> no estimate
+    double lowPercentile = 1.0;    // near = this percentile of the points' depths
+    double highPercentile = 99.0;  // far = this one
 };
 
 struct ColmapPairResult {
     CamerasFile cameras;
-    double scale = 1.0;         // scene units per SfM unit (1 without a baseline)
-    double sfmBaseline = 0.0;   // ref-src distance in SfM units
-    int depthPoints = 0;        // 3D points used for near/far (0 when both were given)
-    bool metric = false;        // a baseline was given
+    double scale = 1.0;        // scene units per SfM unit (1 without a baseline)
+    double sfmBaseline = 0.0;  // ref-src distance in SfM units
+    int depthPoints = 0;       // 3D points used for near/far (0 when both were given)
+    bool metric = false;       // a baseline was given
 };
 
 // Rotation of the unit quaternion (qw, qx, qy, qz), Hamilton convention (COLMAP's, Eigen's).

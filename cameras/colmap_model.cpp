@@ -22,10 +22,17 @@ struct ModelKind {
 
 // COLMAP's camera models (src/colmap/sensor/models.h): id, name, parameter count.
 constexpr ModelKind kModels[] = {
-    {0, "SIMPLE_PINHOLE", 3},   {1, "PINHOLE", 4},          {2, "SIMPLE_RADIAL", 4},
-    {3, "RADIAL", 5},           {4, "OPENCV", 8},           {5, "OPENCV_FISHEYE", 8},
-    {6, "FULL_OPENCV", 12},     {7, "FOV", 5},              {8, "SIMPLE_RADIAL_FISHEYE", 4},
-    {9, "RADIAL_FISHEYE", 5},   {10, "THIN_PRISM_FISHEYE", 12},
+    {0, "SIMPLE_PINHOLE", 3},
+    {1, "PINHOLE", 4},
+    {2, "SIMPLE_RADIAL", 4},
+    {3, "RADIAL", 5},
+    {4, "OPENCV", 8},
+    {5, "OPENCV_FISHEYE", 8},
+    {6, "FULL_OPENCV", 12},
+    {7, "FOV", 5},
+    {8, "SIMPLE_RADIAL_FISHEYE", 4},
+    {9, "RADIAL_FISHEYE", 5},
+    {10, "THIN_PRISM_FISHEYE", 12},
     {11, "RAD_TAN_THIN_PRISM_FISHEYE", 16},
 };
 
@@ -43,7 +50,8 @@ public:
         ss << in.rdbuf();
         bytes_ = ss.str();
     }
-    template <class T> T read(const char* what) {
+    template <class T>
+    T read(const char* what) {
         need(sizeof(T), what);
         T value;
         std::memcpy(&value, bytes_.data() + pos_, sizeof(T));  // x86 and ARM are little endian
@@ -182,7 +190,8 @@ private:
     int lineNo_ = 0;
 };
 
-template <class T> T field(std::istringstream& in, const TextReader& r, const char* what) {
+template <class T>
+T field(std::istringstream& in, const TextReader& r, const char* what) {
     T value;
     if (!(in >> value)) r.fail(std::string("cannot read ") + what);
     return value;
@@ -262,7 +271,9 @@ std::string modelFile(const std::string& dir, const std::string& stem) {
     return "";
 }
 
-bool isBinary(const std::string& path) { return path.size() > 4 && path.substr(path.size() - 4) == ".bin"; }
+bool isBinary(const std::string& path) {
+    return path.size() > 4 && path.substr(path.size() - 4) == ".bin";
+}
 
 }  // namespace
 
@@ -288,7 +299,8 @@ ColmapModel readColmapModel(const std::string& dir, bool readPoints) {
     std::error_code ec;
     if (!fs::exists(dir, ec)) throw FileError("COLMAP model folder '" + dir + "' does not exist");
     if (!fs::is_directory(dir, ec))
-        throw FileError("COLMAP model '" + dir + "' is not a folder (give the folder holding "
+        throw FileError("COLMAP model '" + dir +
+                        "' is not a folder (give the folder holding "
                         "cameras.txt/.bin, images.txt/.bin and points3D.txt/.bin)");
     ColmapModel model;
     model.dir = dir;
@@ -300,9 +312,10 @@ ColmapModel readColmapModel(const std::string& dir, bool readPoints) {
                 hint = "; there is one in '" + (fs::path(dir) / sub).string() + "'";
                 break;
             }
-        throw FileError("no COLMAP model in '" + dir + "': " +
-                        (cameras.empty() ? "cameras.txt or cameras.bin" : "images.txt or images.bin") +
-                        " is missing" + hint);
+        throw FileError(
+            "no COLMAP model in '" + dir +
+            "': " + (cameras.empty() ? "cameras.txt or cameras.bin" : "images.txt or images.bin") +
+            " is missing" + hint);
     }
     isBinary(cameras) ? readCamerasBinary(cameras, model) : readCamerasText(cameras, model);
     isBinary(images) ? readImagesBinary(images, model) : readImagesText(images, model);

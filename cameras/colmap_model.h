@@ -27,7 +27,7 @@ struct ColmapImage {
     double q[4] = {1, 0, 0, 0};
     double t[3] = {0, 0, 0};
     std::uint32_t cameraId = 0;
-    std::string name;  // relative to COLMAP's image folder
+    std::string name;                          // relative to COLMAP's image folder
     std::vector<std::int64_t> observedPoints;  // ids of the 3D points its keypoints see
 };
 

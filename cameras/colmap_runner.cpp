@@ -37,7 +37,8 @@ int runLogged(const std::vector<std::string>& argv, const std::string& log) {
     for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     const pid_t pid = fork();
-    if (pid < 0) throw Error(std::string("cannot start colmap: fork failed: ") + std::strerror(errno));
+    if (pid < 0)
+        throw Error(std::string("cannot start colmap: fork failed: ") + std::strerror(errno));
     if (pid == 0) {
         const int out = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         const int in = open("/dev/null", O_RDONLY);
@@ -87,7 +88,8 @@ ColmapRunResult runColmapOnPair(const std::string& refPhoto, const std::string& 
                                 const ColmapRunOptions& o) {
     const std::string colmap = findExecutable(o.executable);
     if (colmap.empty())
-        throw InputError("'" + o.executable + "' not found: --photos needs COLMAP "
+        throw InputError("'" + o.executable +
+                         "' not found: --photos needs COLMAP "
                          "(apt-get install colmap), or run it yourself and use --colmap");
     // Sizes (and EXIF focal lengths) first, so that unreadable photos fail before COLMAP runs.
     const ExifCameraInfo ri = readExifCameraInfo(refPhoto), si = readExifCameraInfo(srcPhoto);
@@ -123,42 +125,59 @@ ColmapRunResult runColmapOnPair(const std::string& refPhoto, const std::string& 
         const std::string log = (work / (name + ".log")).string();
         const int status = runLogged(args, log);
         if (status != 0 && !mayFail)
-            throw Error("colmap " + name + " failed (exit " + std::to_string(status) + "): " +
-                        lastLine(log) + " [log: " + log + "]");
+            throw Error("colmap " + name + " failed (exit " + std::to_string(status) +
+                        "): " + lastLine(log) + " [log: " + log + "]");
         return status;
     };
-    std::vector<std::string> extract = {"--database_path", db, "--image_path", images,
-                                        "--ImageReader.camera_model", "SIMPLE_RADIAL",
-                                        "--SiftExtraction.use_gpu", "0",
-                                        "--SiftExtraction.num_threads", "1"};
+    std::vector<std::string> extract = {"--database_path",
+                                        db,
+                                        "--image_path",
+                                        images,
+                                        "--ImageReader.camera_model",
+                                        "SIMPLE_RADIAL",
+                                        "--SiftExtraction.use_gpu",
+                                        "0",
+                                        "--SiftExtraction.num_threads",
+                                        "1"};
     if (sameSize) {
         // One camera for both photos (two shots of one lens, or a rectified pair).
         extract.insert(extract.end(), {"--ImageReader.single_camera", "1"});
         if (fx)
-            extract.insert(extract.end(),
-                           {"--ImageReader.camera_params",
-                            number(*fx) + "," + number(0.5 * ri.storedWidth) + "," +
-                                number(0.5 * ri.storedHeight) + ",0"});
+            extract.insert(extract.end(), {"--ImageReader.camera_params",
+                                           number(*fx) + "," + number(0.5 * ri.storedWidth) + "," +
+                                               number(0.5 * ri.storedHeight) + ",0"});
     }
     step("feature_extractor", extract);
-    // One thread for extraction, matching and mapping: with several, RANSAC's random samples depend on
-    // thread timing and the pose (and the near/far range) change from run to run; two photos
+    // One thread for extraction, matching and mapping: with several, RANSAC's random samples depend
+    // on thread timing and the pose (and the near/far range) change from run to run; two photos
     // take a few seconds either way. The seed is COLMAP's default, written out.
     step("exhaustive_matcher", {"--database_path", db, "--SiftMatching.use_gpu", "0",
                                 "--SiftMatching.num_threads", "1", "--random_seed", "0"});
     // The mapper's defaults are made for many views: it drops models of fewer than 10 images
     // and wants 16 degrees of triangulation angle to start; a stereo pair a hand's width
     // apart gives a degree or two.
-    std::vector<std::string> map = {"--database_path", db, "--image_path", images,
-                                    "--output_path", (work / "sparse").string(),
-                                    "--Mapper.min_model_size", "2",
-                                    "--Mapper.multiple_models", "0",
-                                    "--Mapper.init_min_num_inliers", "30",
-                                    "--Mapper.init_min_tri_angle", "0.5",
-                                    "--Mapper.tri_min_angle", "0.5",
-                                    "--Mapper.filter_min_tri_angle", "0.5",
-                                    "--Mapper.num_threads", "1",
-                                    "--random_seed", "0"};
+    std::vector<std::string> map = {"--database_path",
+                                    db,
+                                    "--image_path",
+                                    images,
+                                    "--output_path",
+                                    (work / "sparse").string(),
+                                    "--Mapper.min_model_size",
+                                    "2",
+                                    "--Mapper.multiple_models",
+                                    "0",
+                                    "--Mapper.init_min_num_inliers",
+                                    "30",
+                                    "--Mapper.init_min_tri_angle",
+                                    "0.5",
+                                    "--Mapper.tri_min_angle",
+                                    "0.5",
+                                    "--Mapper.filter_min_tri_angle",
+                                    "0.5",
+                                    "--Mapper.num_threads",
+                                    "1",
+                                    "--random_seed",
+                                    "0"};
     if (fx)
         map.insert(map.end(), {"--Mapper.ba_refine_focal_length", "0",
                                "--Mapper.ba_refine_extra_params", "0"});
@@ -171,13 +190,14 @@ ColmapRunResult runColmapOnPair(const std::string& refPhoto, const std::string& 
     if (related) related = readColmapModel(sparse.string(), false).images.size() >= 2;
     if (!related) {
         const std::string log = (work / "mapper.log").string();
-        throw Error("colmap could not relate the two photos (no reconstruction holds both: too "
-                    "few matches; do they show the same scene?): " + lastLine(log) +
-                    " [log: " + log + "]");
+        throw Error(
+            "colmap could not relate the two photos (no reconstruction holds both: too "
+            "few matches; do they show the same scene?): " +
+            lastLine(log) + " [log: " + log + "]");
     }
-    step("image_undistorter", {"--image_path", images, "--input_path", sparse.string(),
-                               "--output_path", (work / "dense").string(), "--output_type",
-                               "COLMAP"});
+    step("image_undistorter",
+         {"--image_path", images, "--input_path", sparse.string(), "--output_path",
+          (work / "dense").string(), "--output_type", "COLMAP"});
     r.modelDir = (work / "dense" / "sparse").string();
     r.refImage = (work / "dense" / "images" / r.refName).string();
     r.srcImage = (work / "dense" / "images" / r.srcName).string();

@@ -18,12 +18,12 @@ struct ColmapRunOptions {
 };
 
 struct ColmapRunResult {
-    std::string workDir;     // temporary folder holding everything (the caller removes it;
-                             // it is kept when a step fails, for its logs)
-    std::string modelDir;    // the undistorted model (binary files)
-    std::string refName;     // image names in that model
+    std::string workDir;   // temporary folder holding everything (the caller removes it;
+                           // it is kept when a step fails, for its logs)
+    std::string modelDir;  // the undistorted model (binary files)
+    std::string refName;   // image names in that model
     std::string srcName;
-    std::string refImage;    // the undistorted photos, as the model's cameras describe them
+    std::string refImage;  // the undistorted photos, as the model's cameras describe them
     std::string srcImage;
 };
 

@@ -29,19 +29,22 @@ std::optional<double> entryValue(ExifData* data, ExifIfd ifd, ExifTag tag) {
     const ExifByteOrder order = exif_data_get_byte_order(data);
     if (e->size < exif_format_get_size(e->format)) return std::nullopt;
     switch (e->format) {
-    case EXIF_FORMAT_SHORT: return double(exif_get_short(e->data, order));
-    case EXIF_FORMAT_LONG: return double(exif_get_long(e->data, order));
-    case EXIF_FORMAT_RATIONAL: {
-        const ExifRational r = exif_get_rational(e->data, order);
-        if (r.denominator == 0) return std::nullopt;
-        return double(r.numerator) / double(r.denominator);
-    }
-    case EXIF_FORMAT_SRATIONAL: {
-        const ExifSRational r = exif_get_srational(e->data, order);
-        if (r.denominator == 0) return std::nullopt;
-        return double(r.numerator) / double(r.denominator);
-    }
-    default: return std::nullopt;
+        case EXIF_FORMAT_SHORT:
+            return double(exif_get_short(e->data, order));
+        case EXIF_FORMAT_LONG:
+            return double(exif_get_long(e->data, order));
+        case EXIF_FORMAT_RATIONAL: {
+            const ExifRational r = exif_get_rational(e->data, order);
+            if (r.denominator == 0) return std::nullopt;
+            return double(r.numerator) / double(r.denominator);
+        }
+        case EXIF_FORMAT_SRATIONAL: {
+            const ExifSRational r = exif_get_srational(e->data, order);
+            if (r.denominator == 0) return std::nullopt;
+            return double(r.numerator) / double(r.denominator);
+        }
+        default:
+            return std::nullopt;
     }
 }
 
@@ -104,7 +107,8 @@ double exifFocalPixels(const ExifCameraInfo& info, const std::string& path, std:
             *source = "FocalLength " + number(*info.focalMm) + " mm and FocalPlaneXResolution";
         return fx;
     }
-    throw InputError("photo '" + path + "' has no usable EXIF focal length "
+    throw InputError("photo '" + path +
+                     "' has no usable EXIF focal length "
                      "(FocalLengthIn35mmFilm, or FocalLength with FocalPlaneXResolution); "
                      "give --fx in pixels, or use --photos or --colmap");
 }
@@ -118,8 +122,8 @@ CamerasFile exifStereoPair(const std::string& refPath, const std::string& srcPat
     const ExifCameraInfo ri = readExifCameraInfo(refPath), si = readExifCameraInfo(srcPath);
     if (ri.width() != si.width() || ri.height() != si.height())
         throw InputError("a rectified pair needs two photos of one size: '" + refPath + "' is " +
-                         std::to_string(ri.width()) + "x" + std::to_string(ri.height()) +
-                         " and '" + srcPath + "' is " + std::to_string(si.width()) + "x" +
+                         std::to_string(ri.width()) + "x" + std::to_string(ri.height()) + " and '" +
+                         srcPath + "' is " + std::to_string(si.width()) + "x" +
                          std::to_string(si.height()) + " (orientation applied)");
     std::ostringstream log;
     auto camera = [&](const ExifCameraInfo& info, const std::string& path) {
@@ -130,8 +134,8 @@ CamerasFile exifStereoPair(const std::string& refPath, const std::string& srcPat
         c.fx = c.fy = o.fx ? *o.fx : exifFocalPixels(info, path, &source);
         c.cx = 0.5 * c.width;  // pixel centres at +0.5: the image centre is at W/2, H/2
         c.cy = 0.5 * c.height;
-        log << path << ": " << c.width << "x" << c.height << ", fx " << number(c.fx)
-            << " px from " << source;
+        log << path << ": " << c.width << "x" << c.height << ", fx " << number(c.fx) << " px from "
+            << source;
         if (info.orientation != 1) log << ", EXIF orientation " << info.orientation;
         log << "\n";
         c.validate("photo '" + path + "'");

@@ -12,12 +12,12 @@ namespace lh {
 
 // What one photo's EXIF says about its camera (absent tags stay empty).
 struct ExifCameraInfo {
-    int storedWidth = 0, storedHeight = 0;  // pixels as stored in the file
-    int orientation = 1;                    // EXIF Orientation 1..8; 5..8 swap the axes
-    std::optional<double> focal35mm;        // FocalLengthIn35mmFilm, mm
-    std::optional<double> focalMm;          // FocalLength, mm
+    int storedWidth = 0, storedHeight = 0;   // pixels as stored in the file
+    int orientation = 1;                     // EXIF Orientation 1..8; 5..8 swap the axes
+    std::optional<double> focal35mm;         // FocalLengthIn35mmFilm, mm
+    std::optional<double> focalMm;           // FocalLength, mm
     std::optional<double> planePixelsPerMm;  // FocalPlaneXResolution / its unit, pixels per mm
-    std::optional<int> pixelXDimension;     // PixelXDimension: the width the plane refers to
+    std::optional<int> pixelXDimension;      // PixelXDimension: the width the plane refers to
 
     // The upright image's size (orientation applied), pixels.
     int width() const { return orientation >= 5 ? storedHeight : storedWidth; }
@@ -33,12 +33,13 @@ ExifCameraInfo readExifCameraInfo(const std::string& path);
 // definition of the equivalent); else FocalLength * FocalPlaneXResolution, scaled by
 // width / PixelXDimension when the image was resized after capture. Throws InputError naming
 // the file when neither is present.
-double exifFocalPixels(const ExifCameraInfo& info, const std::string& path, std::string* source = nullptr);
+double exifFocalPixels(const ExifCameraInfo& info, const std::string& path,
+                       std::string* source = nullptr);
 
 struct ExifPairOptions {
-    double baseline = 0;                 // metres between the two centres (> 0)
-    std::optional<double> fx;            // pixels; replaces the EXIF focal length of both
-    std::optional<double> near, far;     // scene units; absent = left to `predict`
+    double baseline = 0;              // metres between the two centres (> 0)
+    std::optional<double> fx;         // pixels; replaces the EXIF focal length of both
+    std::optional<double> near, far;  // scene units; absent = left to `predict`
 };
 
 // The pair's cameras.json. Both photos must have the same upright size. Without --near/--far

@@ -4,10 +4,10 @@
 #include "vdb/volume_io.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <cstdlib>
 
 namespace lh::cli {
 
@@ -27,7 +27,8 @@ Vec3d parsePoint(const std::string& text, const std::string& what) {
     if (std::string(p).find_first_not_of(" \t\r") != std::string::npos)
         throw InputError(what + ": expected three numbers X,Y,Z, got '" + text + "'");
     for (double x : v)
-        if (!std::isfinite(x)) throw InputError(what + ": coordinates must be finite, got '" + text + "'");
+        if (!std::isfinite(x))
+            throw InputError(what + ": coordinates must be finite, got '" + text + "'");
     return Vec3d(v[0], v[1], v[2]);
 }
 

@@ -22,10 +22,13 @@ struct BenchOptions {
 void runBench(BenchOptions& o) {
     parseSize(o.size, o.bench.width, o.bench.height);
     EnvmapOptions{o.bench.width, o.bench.height, MarchOptions{}}.validate();
-    if (o.bench.points < 1 || o.bench.points > 1000) throw InputError("--count must be in [1, 1000]");
-    if (o.bench.repeats < 1 || o.bench.repeats > 100) throw InputError("--repeats must be in [1, 100]");
+    if (o.bench.points < 1 || o.bench.points > 1000)
+        throw InputError("--count must be in [1, 1000]");
+    if (o.bench.repeats < 1 || o.bench.repeats > 100)
+        throw InputError("--repeats must be in [1, 100]");
     const LightingVolume volume = loadVolumeForCli(o.file, o.strict);
-    const auto rows = measureSpeedAgainstError(volume, o.bench, [](const std::string& s) { std::cerr << "bench: " << s << "\n"; });
+    const auto rows = measureSpeedAgainstError(
+        volume, o.bench, [](const std::string& s) { std::cerr << "bench: " << s << "\n"; });
     writeSpeedErrorReport(rows, o.out, o.bench.width, o.bench.height);
     std::ifstream table(o.out + "/speed_error.md");
     std::cout << table.rdbuf();
@@ -37,21 +40,27 @@ void runBench(BenchOptions& o) {
 void addBenchEnvmapCommand(CLI::App& app) {
     auto o = std::make_shared<BenchOptions>();
     CLI::App* cmd = app.add_subcommand(
-        "bench-envmap", "Measure envmap speed against error: ours, OpenVDB fixed-step, the paper's spheres");
+        "bench-envmap",
+        "Measure envmap speed against error: ours, OpenVDB fixed-step, the paper's spheres");
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
-    cmd->add_option("--count", o->bench.points, "Random query points in empty space")->capture_default_str();
+    cmd->add_option("--count", o->bench.points, "Random query points in empty space")
+        ->capture_default_str();
     cmd->add_option("--size", o->size, "Envmap size WxH")->capture_default_str();
-    cmd->add_option("--methods", o->bench.methods,
-                    "Only these methods (reference-check, ours-steps, ours-cells, openvdb-fixed-step, "
-                    "paper-spheres); default: all")
+    cmd->add_option(
+           "--methods", o->bench.methods,
+           "Only these methods (reference-check, ours-steps, ours-cells, openvdb-fixed-step, "
+           "paper-spheres); default: all")
         ->delimiter(',')
-        ->check(CLI::IsMember({"reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step", "paper-spheres"}));
+        ->check(CLI::IsMember({"reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step",
+                               "paper-spheres"}));
     cmd->add_option("--seed", o->bench.seed, "Seed of the query points")->capture_default_str();
     cmd->add_option("--repeats", o->bench.repeats,
-                    "Timing rounds: each renders every setting at every point once; an envmap's time is its fastest "
+                    "Timing rounds: each renders every setting at every point once; an envmap's "
+                    "time is its fastest "
                     "round (a busy machine only adds time)")
         ->capture_default_str();
-    cmd->add_option("-o,--output", o->out, "Directory for speed_error.csv/.md/.svg")->capture_default_str();
+    cmd->add_option("-o,--output", o->out, "Directory for speed_error.csv/.md/.svg")
+        ->capture_default_str();
     addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runBench(*o); });
 }

@@ -76,8 +76,10 @@ CamerasFile fromColmap(const ColmapModel& model, const CamerasOptions& o, const 
         std::printf("scale: %.6g m per COLMAP unit (COLMAP baseline %.6g)\n", r.scale,
                     r.sfmBaseline);
     if (r.depthPoints > 0)
-        std::printf("near/far from %d 3D points seen by the reference image (1st and 99th "
-                    "percentile of depth)\n", r.depthPoints);
+        std::printf(
+            "near/far from %d 3D points seen by the reference image (1st and 99th "
+            "percentile of depth)\n",
+            r.depthPoints);
     return r.cameras;
 }
 
@@ -87,8 +89,9 @@ void checkOptions(const CamerasOptions& o) {
     if (!o.colmapDir.empty() && (o.ref.empty() || o.src.empty()))
         throw InputError("--colmap needs --ref and --src (image names as in images.txt)");
     if (o.colmapDir.empty() && (!o.ref.empty() || !o.src.empty()))
-        throw InputError("--ref and --src name images of a --colmap model; with --exif or "
-                         "--photos the first photo is the reference");
+        throw InputError(
+            "--ref and --src name images of a --colmap model; with --exif or "
+            "--photos the first photo is the reference");
     if (!o.exif.empty() && !o.baseline)
         throw InputError("--exif needs --baseline (metres between the two cameras)");
     if (o.baseline) checkBaseline(*o.baseline);
@@ -111,8 +114,7 @@ void runCameras(const CamerasOptions& o) {
     AtomicOutput out(o.output);  // a bad output path fails before any work
     if (!o.colmapDir.empty()) {
         const bool needPoints = !(o.near && o.far);
-        const CamerasFile c =
-            fromColmap(readColmapModel(o.colmapDir, needPoints), o, o.ref, o.src);
+        const CamerasFile c = fromColmap(readColmapModel(o.colmapDir, needPoints), o, o.ref, o.src);
         writeJson(out, c);
         printPair(c, o.baseline ? "m" : "COLMAP units");
     } else if (!o.exif.empty()) {
@@ -133,8 +135,8 @@ void runCameras(const CamerasOptions& o) {
         run.fx = o.fx;
         const ColmapRunResult r = runColmapOnPair(o.photos[0], o.photos[1], run);
         std::printf("colmap work folder: %s\n", r.workDir.c_str());
-        const CamerasFile c = fromColmap(readColmapModel(r.modelDir, !(o.near && o.far)), o,
-                                         r.refName, r.srcName);
+        const CamerasFile c =
+            fromColmap(readColmapModel(r.modelDir, !(o.near && o.far)), o, r.refName, r.srcName);
         // The cameras describe the undistorted photos: they are written beside the output.
         const fs::path base = fs::path(o.output).replace_extension("");
         AtomicOutput refOut(base.string() + "_ref" + fileExtension(r.refImage));
@@ -171,8 +173,9 @@ void addCamerasCommand(CLI::App& app) {
                     "SIMPLE_PINHOLE cameras, i.e. after colmap image_undistorter");
     cmd->add_option("--ref", o->ref, "With --colmap: the reference image's name in the model");
     cmd->add_option("--src", o->src, "With --colmap: the source image's name in the model");
-    cmd->add_option("--exif", o->exif, "Rectified pair REF SRC: fx from EXIF, principal point at "
-                                       "the centre, SRC --baseline to the right of REF")
+    cmd->add_option("--exif", o->exif,
+                    "Rectified pair REF SRC: fx from EXIF, principal point at "
+                    "the centre, SRC --baseline to the right of REF")
         ->expected(2);
     cmd->add_option("--photos", o->photos,
                     "Two photos REF SRC given to colmap (optional program: apt-get install "
@@ -181,8 +184,9 @@ void addCamerasCommand(CLI::App& app) {
     cmd->add_option("--baseline", o->baseline,
                     "Distance between the two camera centres in metres (scales COLMAP's "
                     "arbitrary units; required with --exif)");
-    cmd->add_option("--near", o->near, "Nearest depth (m); default: from the 3D points, or none "
-                                       "with --exif (predict then estimates it)");
+    cmd->add_option("--near", o->near,
+                    "Nearest depth (m); default: from the 3D points, or none "
+                    "with --exif (predict then estimates it)");
     cmd->add_option("--far", o->far, "Farthest depth (m); default as --near");
     cmd->add_option("--fx", o->fx, "Focal length in pixels (--exif, --photos), instead of EXIF");
     cmd->add_option("--min-points", o->minPoints,

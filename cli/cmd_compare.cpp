@@ -104,11 +104,10 @@ void compareSingle(const CompareOptions& o) {
              formatMetric(m.logLuminanceAll), formatMetric(m.irradianceError));
     if (o.mask.empty()) return;
     if (std::isnan(m.psnrObserved))
-        std::cout << padded("observed content", 18) << "no observed pixels in '" << o.mask
-                  << "'\n";
+        std::cout << padded("observed content", 18) << "no observed pixels in '" << o.mask << "'\n";
     else
-        printRow("observed content", formatMetric(m.psnrObserved),
-                 formatMetric(m.angularObserved), formatMetric(m.logLuminanceObserved), "-");
+        printRow("observed content", formatMetric(m.psnrObserved), formatMetric(m.angularObserved),
+                 formatMetric(m.logLuminanceObserved), "-");
 }
 
 void requireDirectory(const std::string& path, const std::string& what) {
@@ -188,7 +187,10 @@ void compareBatch(const CompareOptions& o) {
     const std::vector<EnvmapPair> pairs = findPairs(o.pred, o.gt);
     if (!o.csv.empty()) {
         std::vector<NamedInput> inputs;
-        for (const EnvmapPair& p : pairs) inputs.insert(inputs.end(), {{p.pred, "a prediction in PRED_DIR"}, {p.gt, "a ground truth in GT_DIR"}, {p.mask, "a mask in GT_DIR"}});
+        for (const EnvmapPair& p : pairs)
+            inputs.insert(inputs.end(), {{p.pred, "a prediction in PRED_DIR"},
+                                         {p.gt, "a ground truth in GT_DIR"},
+                                         {p.mask, "a mask in GT_DIR"}});
         requireOutputIsNotAnInput(o.csv, "--csv", inputs);
     }
     const int total = int(pairs.size());
@@ -239,12 +241,11 @@ void addCompareCommand(CLI::App& app) {
         "envmaps against ground truth (docs/metrics.md)");
     cmd->add_option("pred", o->pred, "Predicted envmap (.exr), or PRED_DIR with --batch")
         ->required();
-    cmd->add_option("gt", o->gt, "Ground-truth envmap (.exr), or GT_DIR with --batch")
-        ->required();
-    CLI::Option* batch = cmd->add_flag(
-        "--batch", o->batch,
-        "Compare every env_<k>.exr under GT_DIR with the same path under PRED_DIR; "
-        "env_<k>_mask.png beside a ground truth is its observed mask");
+    cmd->add_option("gt", o->gt, "Ground-truth envmap (.exr), or GT_DIR with --batch")->required();
+    CLI::Option* batch =
+        cmd->add_flag("--batch", o->batch,
+                      "Compare every env_<k>.exr under GT_DIR with the same path under PRED_DIR; "
+                      "env_<k>_mask.png beside a ground truth is its observed mask");
     cmd->add_option("--mask", o->mask, "Observed-pixel mask (.png, nonzero = observed)")
         ->excludes(batch);
     cmd->add_option("--csv", o->csv, "With --batch, write one row of metrics per envmap")

@@ -1,5 +1,5 @@
-// `lighthouse eval --data DIR [--model M] [-o DIR] [--shard K/N]`: the paper's Table 2 on our test split, with
-// the HDR metrics of docs/metrics.md beside it.
+// `lighthouse eval --data DIR [--model M] [-o DIR] [--shard K/N]`: the paper's Table 2 on our test
+// split, with the HDR metrics of docs/metrics.md beside it.
 #include "cli/commands.h"
 #include "cli/net_commands.h"
 #include "net/evaluation.h"
@@ -12,25 +12,31 @@ void addEvalCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<net::EvalOptions>();
     o->hdriDir = LIGHTHOUSE_HDRI_DIR;
     CLI::App* cmd = app.add_subcommand("eval", netCommandDescription("eval"));
-    cmd->add_option("--data", o->data,
-                    "Test split written by `lighthouse synth --split test`, or a set of the same layout "
-                    "without masks or scene.json (dev_cycles: masks from env_K_pos.exr and ref_depth.exr, "
-                    "no oracle row)")
+    cmd->add_option(
+           "--data", o->data,
+           "Test split written by `lighthouse synth --split test`, or a set of the same layout "
+           "without masks or scene.json (dev_cycles: masks from env_K_pos.exr and ref_depth.exr, "
+           "no oracle row)")
         ->required();
     cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
-    cmd->add_option("-o,--output", o->out, "Output directory: table.md, metrics.csv, contact_sheet.png")
+    cmd->add_option("-o,--output", o->out,
+                    "Output directory: table.md, metrics.csv, contact_sheet.png")
         ->capture_default_str();
-    cmd->add_option("--max-scenes", o->maxScenes, "Evaluate only the first N scenes (0: all)")->capture_default_str();
-    cmd->add_flag("!--no-oracle", o->oracle, "Skip the oracle ceiling (it re-bakes every scene's light)");
+    cmd->add_option("--max-scenes", o->maxScenes, "Evaluate only the first N scenes (0: all)")
+        ->capture_default_str();
+    cmd->add_flag("!--no-oracle", o->oracle,
+                  "Skip the oracle ceiling (it re-bakes every scene's light)");
     cmd->add_option("--hdri-dir", o->hdriDir, "Panoramas of the scenes' windows (for the oracle)")
         ->capture_default_str();
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "As predict's --prune-alpha (default: predict's default)");
     auto shard = std::make_shared<std::string>();
-    cmd->add_option("--shard", *shard,
-                    "K/N: score only scenes i with i mod N = K (0-based) into shard files in --output; "
-                    "`lighthouse merge` writes table.md, metrics.csv and the contact sheet of all shards");
-    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
+    cmd->add_option(
+        "--shard", *shard,
+        "K/N: score only scenes i with i mod N = K (0-based) into shard files in --output; "
+        "`lighthouse merge` writes table.md, metrics.csv and the contact sheet of all shards");
+    cmd->add_option("--device", o->device,
+                    "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();
     cmd->callback([o, shard, &threads] {
         o->threads = threads;

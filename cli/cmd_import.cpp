@@ -25,14 +25,16 @@ void runImport(const ImportOptions& o) {
     const Dcc dcc = parseDcc(o.source, "--from");
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the export directory"}});
     DccImportReport report;
-    const LightingVolume volume =
-        importFromDcc(o.input, dcc, &report, o.strict ? NonFinitePolicy::Reject : NonFinitePolicy::Sanitise);
+    const LightingVolume volume = importFromDcc(
+        o.input, dcc, &report, o.strict ? NonFinitePolicy::Reject : NonFinitePolicy::Sanitise);
     for (const auto& w : report.warnings) std::cerr << "warning: " << w << "\n";
     const Mpi* mpi = report.mpi ? &*report.mpi : nullptr;
     warnOfHalfClamping(saveVdb(o.output, &volume, mpi, VolumeSaveOptions{o.half}), "--half");
     std::cout << o.input << " -> " << o.output << ": " << volume.levels.size() << " level(s), "
               << volume.activeVoxelCount() << " active voxel(s)";
-    if (mpi) std::cout << ", and the MPI (" << mpi->planeCount() << " plane(s), from " << report.mpiFile << ")";
+    if (mpi)
+        std::cout << ", and the MPI (" << mpi->planeCount() << " plane(s), from " << report.mpiFile
+                  << ")";
     std::cout << "\n";
     for (const auto& note : report.notes) std::cout << "  " << note << "\n";
 }
@@ -43,8 +45,10 @@ void addImportCommand(CLI::App& app) {
     auto o = std::make_shared<ImportOptions>();
     CLI::App* cmd = app.add_subcommand(
         "import", "Read a Blender/Houdini export (edited or not) back into a lighting volume");
-    cmd->add_option("input", o->input, "Export directory written by 'lighthouse export'")->required();
-    cmd->add_option("--from", o->source, "Program it was exported for: blender or houdini")->required();
+    cmd->add_option("input", o->input, "Export directory written by 'lighthouse export'")
+        ->required();
+    cmd->add_option("--from", o->source, "Program it was exported for: blender or houdini")
+        ->required();
     cmd->add_option("-o,--output", o->output, "Lighting volume (.vdb)")->required();
     addHalfFlag(cmd, o->half);
     addStrictFlag(cmd, o->strict);

@@ -62,8 +62,9 @@ void printInfo(const InfoOptions& o) {
 
 void addInfoCommand(CLI::App& app) {
     auto opts = std::make_shared<InfoOptions>();
-    CLI::App* cmd = app.add_subcommand("info", "Describe a lighting volume file: levels, boxes, "
-                                               "voxel sizes, active voxels, memory, value ranges");
+    CLI::App* cmd = app.add_subcommand("info",
+                                       "Describe a lighting volume file: levels, boxes, "
+                                       "voxel sizes, active voxels, memory, value ranges");
     cmd->add_option("file", opts->file, "Lighting volume (.vdb)")->required();
     addStrictFlag(cmd, opts->strict);
     cmd->callback([opts] { printInfo(*opts); });

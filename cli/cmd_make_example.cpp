@@ -37,8 +37,8 @@ void makeExample(const MakeExampleOptions& o) {
     }
     const LightingVolume volume = makeExampleVolume(o.levels, o.resolution);
     warnOfHalfClamping(saveVolume(o.output, volume, VolumeSaveOptions{o.half}), "--half");
-    std::cerr << "example room: " << volume.levels.size() << " levels of " << o.resolution
-              << "^3, " << volume.activeVoxelCount() << " active voxels -> " << o.output << "\n";
+    std::cerr << "example room: " << volume.levels.size() << " levels of " << o.resolution << "^3, "
+              << volume.activeVoxelCount() << " active voxels -> " << o.output << "\n";
     if (cameras) {
         cameras->commit();
         std::cerr << "cameras -> " << o.cameras << "\n";
@@ -54,7 +54,8 @@ void addMakeExampleCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output .vdb")->required();
     cmd->add_option("--cameras", o->cameras, "Also write the example's cameras.json here");
     cmd->add_option("--levels", o->levels, "Number of nested levels")->capture_default_str();
-    cmd->add_option("--res", o->resolution, "Voxels per side of every level")->capture_default_str();
+    cmd->add_option("--res", o->resolution, "Voxels per side of every level")
+        ->capture_default_str();
     addHalfFlag(cmd, o->half);
     cmd->callback([o] { makeExample(*o); });
 }

@@ -16,8 +16,9 @@ namespace lh::cli {
 
 namespace fs = std::filesystem;
 
-nlohmann::json predictionEntry(const std::string& name, const std::string& ref, const std::string& src,
-                               const std::string& cameras, const std::string& output) {
+nlohmann::json predictionEntry(const std::string& name, const std::string& ref,
+                               const std::string& src, const std::string& cameras,
+                               const std::string& output) {
     return {{"name", name}, {"ref", ref}, {"src", src}, {"cameras", cameras}, {"output", output}};
 }
 
@@ -30,7 +31,8 @@ namespace {
 std::size_t mergePredictShards(const std::string& dir) {
     const fs::path index = fs::path(dir) / kPredictionsIndex;
     if (fs::exists(index))
-        throw FileError("'" + dir + "' is merged already (it holds " + kPredictionsIndex + "); remove it to merge again");
+        throw FileError("'" + dir + "' is merged already (it holds " + kPredictionsIndex +
+                        "); remove it to merge again");
     const std::vector<nlohmann::json> records = readShardSet(dir, "predict", {"predict"});
     const nlohmann::json& header = records.front()["predict"];
     const std::size_t count = header.value("pairs", std::size_t(0));
@@ -40,7 +42,8 @@ std::size_t mergePredictShards(const std::string& dir) {
         for (nlohmann::json e : r["items"]) {
             const std::size_t i = e.value("index", count);
             if (i >= count || !entries[i].is_null())
-                throw FileError("shard records in '" + dir + "' list pair " + e.value("name", "?") + " out of place");
+                throw FileError("shard records in '" + dir + "' list pair " + e.value("name", "?") +
+                                " out of place");
             if (!fs::is_regular_file(fs::path(dir) / e.value("output", "")))
                 throw FileError("'" + (fs::path(dir) / e.value("output", "")).string() +
                                 "', listed by a shard record, is missing");
@@ -49,7 +52,8 @@ std::size_t mergePredictShards(const std::string& dir) {
             entries[i] = e;
         }
     for (std::size_t i = 0; i < count; ++i)
-        if (entries[i].is_null()) throw FileError("shard records in '" + dir + "' lack pair " + std::to_string(i));
+        if (entries[i].is_null())
+            throw FileError("shard records in '" + dir + "' lack pair " + std::to_string(i));
     writeTextFile(index.string(), predictionsIndex(header.value("model", ""), entries).dump(1));
     return count;
 }
@@ -60,7 +64,8 @@ void runMerge(const std::vector<std::string>& dirs) {
         const std::string kind = shardKindIn(dir);
         if (kind == "synth") {
             const int n = synth::mergeDatasetShards(dir);
-            std::cerr << "merge: " << dir << ": " << n << " examples -> manifest.json, contact_sheet.png\n";
+            std::cerr << "merge: " << dir << ": " << n
+                      << " examples -> manifest.json, contact_sheet.png\n";
         } else if (kind == "eval") {
             std::cout << net::mergeEvalShards(dir);
             std::cerr << "merge: " << dir << " -> table.md, metrics.csv, contact_sheet.png\n";
@@ -68,7 +73,9 @@ void runMerge(const std::vector<std::string>& dirs) {
             const std::size_t n = mergePredictShards(dir);
             std::cerr << "merge: " << dir << ": " << n << " pairs -> " << kPredictionsIndex << "\n";
         } else if (kind.empty()) {
-            throw FileError("'" + dir + "' holds no shard records (shard-K-of-N.json from synth, eval or predict --shard)");
+            throw FileError(
+                "'" + dir +
+                "' holds no shard records (shard-K-of-N.json from synth, eval or predict --shard)");
         } else {
             throw FileError("'" + dir + "': unknown kind of shard record '" + kind + "'");
         }
@@ -79,14 +86,19 @@ void runMerge(const std::vector<std::string>& dirs) {
 
 void addMergeCommand(CLI::App& app) {
     auto dirs = std::make_shared<std::vector<std::string>>();
-    CLI::App* cmd = app.add_subcommand(
-        "merge", "Join the outputs of a complete set of shards (synth, eval or predict --shard K/N) in each DIR");
-    cmd->add_option("dirs", *dirs, "Directories the shards wrote into (synth -o, eval -o, predict -o)")
+    CLI::App* cmd = app.add_subcommand("merge",
+                                       "Join the outputs of a complete set of shards (synth, eval "
+                                       "or predict --shard K/N) in each DIR");
+    cmd->add_option("dirs", *dirs,
+                    "Directories the shards wrote into (synth -o, eval -o, predict -o)")
         ->required();
     cmd->footer(
-        "Refuses an incomplete set (names the missing shards), records that disagree, and a directory merged "
-        "already. synth: manifest.json (\"seconds\": the shards' sum) and contact_sheet.png; eval: table.md, "
-        "metrics.csv, contact_sheet.png; predict: predictions.json. Everything but the timings is what one "
+        "Refuses an incomplete set (names the missing shards), records that disagree, and a "
+        "directory merged "
+        "already. synth: manifest.json (\"seconds\": the shards' sum) and contact_sheet.png; eval: "
+        "table.md, "
+        "metrics.csv, contact_sheet.png; predict: predictions.json. Everything but the timings is "
+        "what one "
         "run without --shard writes.");
     cmd->callback([dirs] { runMerge(*dirs); });
 }

@@ -1,4 +1,5 @@
-// `lighthouse predict --ref REF.png --src SRC.png --cameras cameras.json [--model M] [--at X,Y,Z ...]
+// `lighthouse predict --ref REF.png --src SRC.png --cameras cameras.json [--model M] [--at X,Y,Z
+// ...]
 //  [--points FILE] [--png] -o scene.vdb`
 // `lighthouse predict --pairs LIST | --examples DIR -o OUT_DIR [--shard K/N]`: many pairs, one
 // model load; OUT_DIR/NAME.vdb each, and predictions.json (or a shard record, cli/shard_merge.h).
@@ -57,7 +58,9 @@ std::vector<BatchItem> readPairList(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw FileError("cannot read the list of pairs '" + path + "'");
     const fs::path base = fs::path(path).parent_path();
-    const auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? p : (base / p).string(); };
+    const auto resolve = [&](const std::string& p) {
+        return fs::path(p).is_absolute() ? p : (base / p).string();
+    };
     std::vector<BatchItem> items;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
@@ -70,9 +73,11 @@ std::vector<BatchItem> readPairList(const std::string& path) {
                              ": expected REF SRC CAMERAS [NAME], got '" + line + "'");
         char id[16];
         std::snprintf(id, sizeof id, "%06zu", items.size());
-        items.push_back({f.size() == 4 ? f[3] : std::string(id), resolve(f[0]), resolve(f[1]), resolve(f[2])});
+        items.push_back(
+            {f.size() == 4 ? f[3] : std::string(id), resolve(f[0]), resolve(f[1]), resolve(f[2])});
     }
-    if (items.empty()) throw InputError("'" + path + "' lists no pairs (lines REF SRC CAMERAS [NAME])");
+    if (items.empty())
+        throw InputError("'" + path + "' lists no pairs (lines REF SRC CAMERAS [NAME])");
     return items;
 }
 
@@ -84,14 +89,16 @@ std::vector<BatchItem> batchItems(const PredictOptions& o) {
         for (const std::string& dir : net::listExamples(o.examples)) {
             const fs::path d(dir);
             items.push_back({d.filename().string(), (d / dataset::viewPng("ref")).string(),
-                             (d / dataset::viewPng("src")).string(), (d / dataset::kCameras).string()});
+                             (d / dataset::viewPng("src")).string(),
+                             (d / dataset::kCameras).string()});
         }
     }
     std::set<std::string> names;
     for (const BatchItem& item : items) {
         if (item.name.empty() || item.name.find('/') != std::string::npos || item.name[0] == '.')
             throw InputError("pair name '" + item.name + "' is not a plain file name");
-        if (!names.insert(item.name).second) throw InputError("two pairs are named '" + item.name + "'");
+        if (!names.insert(item.name).second)
+            throw InputError("two pairs are named '" + item.name + "'");
     }
     return items;
 }
@@ -106,13 +113,17 @@ net::PredictorOptions predictorOptions(const PredictOptions& o, int threads) {
 }
 
 void runPredictBatch(const PredictOptions& o, int threads) {
-    if (!o.pairs.empty() && !o.examples.empty()) throw InputError("give --pairs or --examples, not both");
+    if (!o.pairs.empty() && !o.examples.empty())
+        throw InputError("give --pairs or --examples, not both");
     if (!o.ref.empty() || !o.src.empty() || !o.cameras.empty())
-        throw InputError("--ref, --src and --cameras are for one pair; --pairs and --examples list many");
+        throw InputError(
+            "--ref, --src and --cameras are for one pair; --pairs and --examples list many");
     if (!o.envmapsAt.empty() || !o.pointsFile.empty() || o.alsoPng)
-        throw InputError("--at, --points and --png are for one pair, not with --pairs or --examples");
+        throw InputError(
+            "--at, --points and --png are for one pair, not with --pairs or --examples");
     if (fileExtension(o.output) == ".vdb")
-        throw InputError("with --pairs or --examples, -o is a directory (NAME.vdb each), not '" + o.output + "'");
+        throw InputError("with --pairs or --examples, -o is a directory (NAME.vdb each), not '" +
+                         o.output + "'");
     const Shard shard = o.shard.empty() ? Shard{} : parseShard(o.shard);
     const std::vector<BatchItem> items = batchItems(o);
     fs::create_directories(o.output);
@@ -127,46 +138,56 @@ void runPredictBatch(const PredictOptions& o, int threads) {
     for (std::size_t i = 0; i < items.size(); ++i) {
         if (!shard.owns(i)) continue;
         const BatchItem& item = items[i];
-        net::StereoPair pair{readImage(item.ref), readImage(item.src), loadCamerasFile(item.cameras)};
+        net::StereoPair pair{readImage(item.ref), readImage(item.src),
+                             loadCamerasFile(item.cameras)};
         net::validateStereoPair(pair);
-    for (const auto& w : net::stereoPairWarnings(pair)) std::cerr << "warning: " << w << "\n";
+        for (const auto& w : net::stereoPairWarnings(pair)) std::cerr << "warning: " << w << "\n";
         const net::Prediction p = predictor.predict(pair);
         const std::string output = item.name + ".vdb";
-        warnOfHalfClamping(saveVdb((fs::path(o.output) / output).string(), &p.volume, &p.mpi, VolumeSaveOptions{o.half}),
+        warnOfHalfClamping(saveVdb((fs::path(o.output) / output).string(), &p.volume, &p.mpi,
+                                   VolumeSaveOptions{o.half}),
                            "--half");
         nlohmann::json entry = predictionEntry(item.name, item.ref, item.src, item.cameras, output);
         entry["index"] = i;
         entry["seconds"] = p.seconds;
         entries.push_back(entry);
-        std::cerr << "predict: " << ++done << "/" << owned << " " << item.name << ": network " << p.seconds << " s, "
-                  << p.volume.activeVoxelCount() << " active voxels\n";
+        std::cerr << "predict: " << ++done << "/" << owned << " " << item.name << ": network "
+                  << p.seconds << " s, " << p.volume.activeVoxelCount() << " active voxels\n";
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::string model = o.model.empty() ? net::defaultModelPath() : o.model;
     if (shard.active) {
-        const nlohmann::json record = {{"kind", "predict"}, {"shard", shard.index}, {"shards", shard.count},
-                                       {"predict", {{"model", model}, {"pairs", items.size()}}},
-                                       {"seconds", seconds}, {"items", entries}};
+        const nlohmann::json record = {
+            {"kind", "predict"},     {"shard", shard.index},
+            {"shards", shard.count}, {"predict", {{"model", model}, {"pairs", items.size()}}},
+            {"seconds", seconds},    {"items", entries}};
         writeTextFile((fs::path(o.output) / shard.recordName()).string(), record.dump(1));
-        std::cerr << "predict: shard done in " << seconds << " s -> " << o.output << "/" << shard.recordName()
-                  << "; `lighthouse merge " << o.output << "` writes predictions.json once every shard is done\n";
+        std::cerr << "predict: shard done in " << seconds << " s -> " << o.output << "/"
+                  << shard.recordName() << "; `lighthouse merge " << o.output
+                  << "` writes predictions.json once every shard is done\n";
         return;
     }
     for (auto& e : entries) {
         e.erase("index");
         e.erase("seconds");
     }
-    writeTextFile((fs::path(o.output) / kPredictionsIndex).string(), predictionsIndex(model, entries).dump(1));
-    std::cerr << "predict: " << items.size() << " pairs in " << seconds << " s -> " << o.output << "/"
-              << kPredictionsIndex << "\n";
+    writeTextFile((fs::path(o.output) / kPredictionsIndex).string(),
+                  predictionsIndex(model, entries).dump(1));
+    std::cerr << "predict: " << items.size() << " pairs in " << seconds << " s -> " << o.output
+              << "/" << kPredictionsIndex << "\n";
 }
 
 void runPredict(const PredictOptions& o, int threads) {
     if (!o.pairs.empty() || !o.examples.empty()) return runPredictBatch(o, threads);
-    if (!o.shard.empty()) throw InputError("--shard needs the batch form, --pairs LIST or --examples DIR");
+    if (!o.shard.empty())
+        throw InputError("--shard needs the batch form, --pairs LIST or --examples DIR");
     if (o.ref.empty() || o.src.empty() || o.cameras.empty())
-        throw InputError("predict needs --ref, --src and --cameras (one pair), or --pairs LIST or --examples DIR");
-    if (fileExtension(o.output) != ".vdb") throw InputError("output '" + o.output + "' must end in .vdb");
+        throw InputError(
+            "predict needs --ref, --src and --cameras (one pair), or --pairs LIST or --examples "
+            "DIR");
+    if (fileExtension(o.output) != ".vdb")
+        throw InputError("output '" + o.output + "' must end in .vdb");
     requireWritableOutput(o.output);  // before the network's seconds, not after them
     const auto start = std::chrono::steady_clock::now();
     net::StereoPair pair{readImage(o.ref), readImage(o.src), loadCamerasFile(o.cameras)};
@@ -176,7 +197,8 @@ void runPredict(const PredictOptions& o, int threads) {
         for (const Vec3d& p : readPointsFile(o.pointsFile)) points.push_back(p);
     requirePositiveExposure(o.exposure);
     if (points.empty() && (o.alsoPng || o.exposure != 1.f))
-        throw InputError("--png and --exposure are for the envmaps of --at or --points, and none was given");
+        throw InputError(
+            "--png and --exposure are for the envmaps of --at or --points, and none was given");
     EnvmapOptions envOptions;
     parseSize(o.envmapSize, envOptions.width, envOptions.height);
     envOptions.validate();
@@ -185,23 +207,28 @@ void runPredict(const PredictOptions& o, int threads) {
 
     const net::Predictor predictor(predictorOptions(o, threads));
     const net::NetConfig& config = predictor.config();
-    std::cerr << "predict: model '" << (o.model.empty() ? net::defaultModelPath() : o.model) << "' (config "
-              << config.name << ": " << config.width << "x" << config.height << " input, " << config.planes
-              << " planes, " << config.levels << " x " << config.resolution << "^3)\n";
+    std::cerr << "predict: model '" << (o.model.empty() ? net::defaultModelPath() : o.model)
+              << "' (config " << config.name << ": " << config.width << "x" << config.height
+              << " input, " << config.planes << " planes, " << config.levels << " x "
+              << config.resolution << "^3)\n";
     const net::Prediction p = predictor.predict(pair);
     if (p.rangeEstimated) {
         if (p.range.fallback)
-            std::cerr << "predict: warning: the pair shows too little texture to estimate depth; using the default range "
-                      << p.range.near << " .. " << p.range.far << " (give near/far in cameras.json)\n";
+            std::cerr << "predict: warning: the pair shows too little texture to estimate depth; "
+                         "using the default range "
+                      << p.range.near << " .. " << p.range.far
+                      << " (give near/far in cameras.json)\n";
         else
-            std::cerr << "predict: depth range estimated from the pair: " << p.range.near << " .. " << p.range.far
-                      << " (" << p.range.votes << " pixels voted)\n";
+            std::cerr << "predict: depth range estimated from the pair: " << p.range.near << " .. "
+                      << p.range.far << " (" << p.range.votes << " pixels voted)\n";
     } else {
-        std::cerr << "predict: depth range from cameras.json: " << p.range.near << " .. " << p.range.far << "\n";
+        std::cerr << "predict: depth range from cameras.json: " << p.range.near << " .. "
+                  << p.range.far << "\n";
     }
     warnOfHalfClamping(saveVdb(o.output, &p.volume, &p.mpi, VolumeSaveOptions{o.half}), "--half");
-    std::cerr << "predict: network " << p.seconds << " s; " << p.volume.activeVoxelCount() << " active voxels, MPI of "
-              << p.mpi.planeCount() << " planes -> " << o.output << "\n";
+    std::cerr << "predict: network " << p.seconds << " s; " << p.volume.activeVoxelCount()
+              << " active voxels, MPI of " << p.mpi.planeCount() << " planes -> " << o.output
+              << "\n";
     if (!points.empty()) {
         const RenderVolume prepared(p.volume);
         for (size_t i = 0; i < points.size(); ++i) {
@@ -210,11 +237,12 @@ void runPredict(const PredictOptions& o, int threads) {
             const ImageRGB env = renderEnvmap(prepared, points[i], envOptions);
             writeImage(env, exr);
             if (o.alsoPng) writePng(env, withExtension(exr, ".png"), o.exposure);
-            std::cerr << "predict: envmap at (" << points[i].x() << ", " << points[i].y() << ", " << points[i].z()
-                      << ") -> " << exr << (o.alsoPng ? " (+ .png)" : "") << "\n";
+            std::cerr << "predict: envmap at (" << points[i].x() << ", " << points[i].y() << ", "
+                      << points[i].z() << ") -> " << exr << (o.alsoPng ? " (+ .png)" : "") << "\n";
         }
     }
-    std::cerr << "predict: done in " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+    std::cerr << "predict: done in "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
               << " s\n";
 }
 
@@ -225,30 +253,38 @@ void addPredictCommand(CLI::App& app, const int& threads) {
     CLI::App* cmd = app.add_subcommand("predict", netCommandDescription("predict"));
     cmd->add_option("--ref", o->ref, "Reference image (.png/.jpg sRGB or .exr linear)");
     cmd->add_option("--src", o->src, "Second image of the stereo pair");
-    cmd->add_option("--cameras", o->cameras, "cameras.json with ref and src (near/far optional: estimated if absent)");
+    cmd->add_option("--cameras", o->cameras,
+                    "cameras.json with ref and src (near/far optional: estimated if absent)");
     cmd->add_option("--pairs", o->pairs,
-                    "Batch: a list file, one pair a line 'REF SRC CAMERAS [NAME]' (paths relative to the list); "
+                    "Batch: a list file, one pair a line 'REF SRC CAMERAS [NAME]' (paths relative "
+                    "to the list); "
                     "-o is then a directory of NAME.vdb and predictions.json");
     cmd->add_option("--examples", o->examples,
-                    "Batch: every example of a data set (ref.png, src.png, cameras.json), NAME = its directory");
-    cmd->add_option("--shard", o->shard,
-                    "Batch: K/N, predict only pair i with i mod N = K (0-based) and write a shard record; "
-                    "`lighthouse merge OUT` writes predictions.json of all shards");
+                    "Batch: every example of a data set (ref.png, src.png, cameras.json), NAME = "
+                    "its directory");
+    cmd->add_option(
+        "--shard", o->shard,
+        "Batch: K/N, predict only pair i with i mod N = K (0-based) and write a shard record; "
+        "`lighthouse merge OUT` writes predictions.json of all shards");
     cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly all)")
         ->capture_default_str();
-    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
+    cmd->add_option("--device", o->device,
+                    "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();
     cmd->add_option("--at", o->envmapsAt,
                     "Also render an envmap at this point X,Y,Z (repeatable: --at A --at B), "
                     "OUT_000.exr, OUT_001.exr, ... next to the output")
         ->allow_extra_args(false);
     cmd->add_option("--points", o->pointsFile, "Points file of envmaps to render, as --at");
-    cmd->add_option("--envmap-size", o->envmapSize, "Size of those envmaps, WxH")->capture_default_str();
+    cmd->add_option("--envmap-size", o->envmapSize, "Size of those envmaps, WxH")
+        ->capture_default_str();
     addImageFlags(cmd, o->alsoPng, o->exposure);  // for those envmaps: checked in runPredict
     addHalfFlag(cmd, o->half);
-    cmd->add_option("-o,--output", o->output, "Output .vdb (MPI planes + lighting volume levels); a directory in the batch form")
+    cmd->add_option(
+           "-o,--output", o->output,
+           "Output .vdb (MPI planes + lighting volume levels); a directory in the batch form")
         ->required();
     cmd->callback([o, &threads] { runPredict(*o, threads); });
 }

@@ -49,12 +49,17 @@ void renderEnvmaps(const RenderEnvmapOptions& o) {
     for (const auto& text : o.at) points.push_back(parsePoint(text, "--at"));
     if (!o.pointsFile.empty())
         for (const auto& p : readPointsFile(o.pointsFile)) points.push_back(p);
-    if (points.empty()) throw InputError("give at least one point with --at X,Y,Z or --points FILE");
-    const auto outputPath = [&](std::size_t i) { return points.size() == 1 ? o.output : numberedPath(o.output, int(i)); };
-    const std::vector<NamedInput> inputs = {{o.file, "the input volume"}, {o.pointsFile, "--points"}};
+    if (points.empty())
+        throw InputError("give at least one point with --at X,Y,Z or --points FILE");
+    const auto outputPath = [&](std::size_t i) {
+        return points.size() == 1 ? o.output : numberedPath(o.output, int(i));
+    };
+    const std::vector<NamedInput> inputs = {{o.file, "the input volume"},
+                                            {o.pointsFile, "--points"}};
     for (std::size_t i = 0; i < points.size(); ++i) {
         requireOutputIsNotAnInput(outputPath(i), "-o", inputs);
-        if (o.alsoPng && ext == ".exr") requireOutputIsNotAnInput(withExtension(outputPath(i), ".png"), "--png", inputs);
+        if (o.alsoPng && ext == ".exr")
+            requireOutputIsNotAnInput(withExtension(outputPath(i), ".png"), "--png", inputs);
     }
 
     const LightingVolume volume = loadVolumeForCli(o.file, o.strict);
@@ -64,19 +69,21 @@ void renderEnvmaps(const RenderEnvmapOptions& o) {
         for (const auto& level : volume.levels) inside = inside || level.containsWorld(p);
         if (!inside)
             std::cerr << "warning: point (" << p.x() << ", " << p.y() << ", " << p.z()
-                      << ") lies outside every level of the volume: its envmap sees the volume from outside\n";
+                      << ") lies outside every level of the volume: its envmap sees the volume "
+                         "from outside\n";
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
         const auto start = std::chrono::steady_clock::now();
         const ImageRGB envmap = renderEnvmap(prepared, points[i], options);
-        const double ms = std::chrono::duration<double, std::milli>(
-                              std::chrono::steady_clock::now() - start).count();
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
         const std::string path = outputPath(i);
         writeImage(envmap, path, o.exposure);
         if (o.alsoPng && ext == ".exr") writePng(envmap, withExtension(path, ".png"), o.exposure);
         std::cerr << "[" << i + 1 << "/" << points.size() << "] envmap at (" << points[i].x()
-                  << ", " << points[i].y() << ", " << points[i].z() << ") " << options.width
-                  << "x" << options.height << " in " << ms << " ms -> " << path << "\n";
+                  << ", " << points[i].y() << ", " << points[i].z() << ") " << options.width << "x"
+                  << options.height << " in " << ms << " ms -> " << path << "\n";
     }
 }
 
@@ -87,7 +94,8 @@ void addRenderEnvmapCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "render-envmap", "Render equirectangular envmaps (incident radiance) at world points");
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
-    cmd->add_option("--at", o->at, "World point X,Y,Z (repeatable: --at A --at B)")->allow_extra_args(false);
+    cmd->add_option("--at", o->at, "World point X,Y,Z (repeatable: --at A --at B)")
+        ->allow_extra_args(false);
     cmd->add_option("--points", o->pointsFile, "Points file: one point 'x y z' per line");
     cmd->add_option("--size", o->size, "Envmap size WxH with W = 2H")->capture_default_str();
     addQuadratureFlags(cmd, o->quadrature);
@@ -97,8 +105,9 @@ void addRenderEnvmapCommand(CLI::App& app) {
                   "Reference mode: 0.05-voxel fixed steps, no empty-space skipping, no early stop");
     addImageFlags(cmd, o->alsoPng, o->exposure);
     addStrictFlag(cmd, o->strict);
-    cmd->add_option("-o,--output", o->output,
-                    "Output .exr (linear) or .png (sRGB); numbered _000, _001... for several points")
+    cmd->add_option(
+           "-o,--output", o->output,
+           "Output .exr (linear) or .png (sRGB); numbered _000, _001... for several points")
         ->required();
     cmd->callback([o] { renderEnvmaps(*o); });
 }

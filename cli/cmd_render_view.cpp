@@ -29,7 +29,8 @@ struct RenderViewOptions {
 
 void renderViewCommand(const RenderViewOptions& o) {
     const std::string ext = fileExtension(o.output);
-    if (ext != ".exr" && ext != ".png") throw InputError("output '" + o.output + "' must end in .exr or .png");
+    if (ext != ".exr" && ext != ".png")
+        throw InputError("output '" + o.output + "' must end in .exr or .png");
     requirePositiveExposure(o.exposure);
     const std::vector<NamedInput> inputs = {{o.file, "the input volume"}, {o.cameras, "--cameras"}};
     requireOutputIsNotAnInput(o.output, "-o", inputs);
@@ -55,7 +56,8 @@ void addRenderViewCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "render-view", "Render a perspective picture of a lighting volume from a camera");
     cmd->add_option("file", o->file, "Lighting volume (.vdb)")->required();
-    cmd->add_option("--cameras", o->cameras, "cameras.json (docs/conventions.md#cameras)")->required();
+    cmd->add_option("--cameras", o->cameras, "cameras.json (docs/conventions.md#cameras)")
+        ->required();
     cmd->add_option("--view", o->view, "Which camera: ref, src or tgt")->capture_default_str();
     addImageFlags(cmd, o->alsoPng, o->exposure);
     addQuadratureFlags(cmd, o->quadrature);

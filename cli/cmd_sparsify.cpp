@@ -34,11 +34,15 @@ void runSparsify(const SparsifyOptions& o) {
         throw InputError("output must be a .vdb file, got '" + o.output + "'");
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the input volume"}});
     if (o.tau && !(*o.tau > 0))
-        throw InputError("--tau must be positive (a bound of 0 drops nothing; omit --tau to search for one), got " +
-                         std::to_string(*o.tau));
+        throw InputError(
+            "--tau must be positive (a bound of 0 drops nothing; omit --tau to search for one), "
+            "got " +
+            std::to_string(*o.tau));
     if (o.tau) SparsityOptions{*o.tau}.validate();
-    if (!(o.targetDb > 0 && o.targetDb <= 10)) throw InputError("--target-db must be in (0, 10] dB");
-    if (!(o.basePsnr > 0 && o.basePsnr < 100)) throw InputError("--base-psnr must be in (0, 100) dB");
+    if (!(o.targetDb > 0 && o.targetDb <= 10))
+        throw InputError("--target-db must be in (0, 10] dB");
+    if (!(o.basePsnr > 0 && o.basePsnr < 100))
+        throw InputError("--base-psnr must be in (0, 100) dB");
     if (o.points < 1 || o.points > 64) throw InputError("--count must be in [1, 64]");
     SparsityOptions options;
     if (!o.depthRange.empty()) {
@@ -53,36 +57,48 @@ void runSparsify(const SparsifyOptions& o) {
         search.points = o.points;
         search.halfPrecision = o.half;
         const double required = requiredPsnrForLoss(o.targetDb, o.basePsnr);
-        std::fprintf(stderr, "sparsify: envmaps must stay within %.1f dB of the unpruned ones\n", required);
-        const BoundChoice choice = chooseSparsityBound(volume, required, search,
-                                                       [](const std::string& s) { std::cerr << "sparsify: " << s << "\n"; });
+        std::fprintf(stderr, "sparsify: envmaps must stay within %.1f dB of the unpruned ones\n",
+                     required);
+        const BoundChoice choice = chooseSparsityBound(
+            volume, required, search,
+            [](const std::string& s) { std::cerr << "sparsify: " << s << "\n"; });
         options.tau = choice.tau;
     }
     SparsityStats stats;
     const LightingVolume pruned = sparsify(volume, options, &stats);
     warnOfHalfClamping(saveSparseVolume(o.output, pruned, o.half), "--half");
-    std::printf("tau %.3g (rays up to %.3g scene units, brightest colour %.3g: voxels of density <= %.3g per unit "
-                "dropped): %llu -> %llu active voxels, %.2f -> %.2f MB in memory, %d level(s) dropped, "
-                "%s on disk (%s, Blosc)\n",
-                options.tau, stats.rayLength, stats.maxColour,
-                stats.maxColour > 0 ? stats.fieldBound / stats.maxColour : 0.0,
-                static_cast<unsigned long long>(stats.activeBefore),
-                static_cast<unsigned long long>(stats.activeAfter), stats.memoryBefore / 1e6, stats.memoryAfter / 1e6,
-                stats.levelsDropped, o.output.c_str(), o.half ? "half" : "float");
+    std::printf(
+        "tau %.3g (rays up to %.3g scene units, brightest colour %.3g: voxels of density <= %.3g "
+        "per unit "
+        "dropped): %llu -> %llu active voxels, %.2f -> %.2f MB in memory, %d level(s) dropped, "
+        "%s on disk (%s, Blosc)\n",
+        options.tau, stats.rayLength, stats.maxColour,
+        stats.maxColour > 0 ? stats.fieldBound / stats.maxColour : 0.0,
+        static_cast<unsigned long long>(stats.activeBefore),
+        static_cast<unsigned long long>(stats.activeAfter), stats.memoryBefore / 1e6,
+        stats.memoryAfter / 1e6, stats.levelsDropped, o.output.c_str(), o.half ? "half" : "float");
 }
 
 }  // namespace
 
 void addSparsifyCommand(CLI::App& app) {
     auto o = std::make_shared<SparsifyOptions>();
-    CLI::App* cmd = app.add_subcommand("sparsify", "Drop what a volume's envmaps do not need, within an error bound");
+    CLI::App* cmd = app.add_subcommand(
+        "sparsify", "Drop what a volume's envmaps do not need, within an error bound");
     cmd->add_option("input", o->input, "Lighting volume (.vdb)")->required();
     cmd->add_option("-o,--output", o->output, "Output .vdb")->required();
-    cmd->add_option("--target-db", o->targetDb, "PSNR loss allowed against ground truth (dB)")->capture_default_str();
-    cmd->add_option("--base-psnr", o->basePsnr, "PSNR the volume reaches against ground truth (dB)")->capture_default_str();
-    cmd->add_option("--tau", o->tau, "Explicit bound in (0, 1]: largest change of any envmap pixel, linear radiance with white = 1 (skips the search)");
-    cmd->add_option("--levels-from-depth", o->depthRange, "NEAR,FAR: keep the levels this depth range needs");
-    cmd->add_option("--count", o->points, "Random free-space points for the search (least dense points in fog)")->capture_default_str();
+    cmd->add_option("--target-db", o->targetDb, "PSNR loss allowed against ground truth (dB)")
+        ->capture_default_str();
+    cmd->add_option("--base-psnr", o->basePsnr, "PSNR the volume reaches against ground truth (dB)")
+        ->capture_default_str();
+    cmd->add_option("--tau", o->tau,
+                    "Explicit bound in (0, 1]: largest change of any envmap pixel, linear radiance "
+                    "with white = 1 (skips the search)");
+    cmd->add_option("--levels-from-depth", o->depthRange,
+                    "NEAR,FAR: keep the levels this depth range needs");
+    cmd->add_option("--count", o->points,
+                    "Random free-space points for the search (least dense points in fog)")
+        ->capture_default_str();
     addHalfFlag(cmd, o->half);
     addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runSparsify(*o); });

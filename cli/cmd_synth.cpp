@@ -22,8 +22,10 @@ struct SynthCommandOptions {
 std::string duration(double seconds) {
     char buf[32];
     const int s = int(seconds + 0.5);
-    if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", s / 3600, s / 60 % 60);
-    else std::snprintf(buf, sizeof buf, "%dm%02ds", s / 60, s % 60);
+    if (s >= 3600)
+        std::snprintf(buf, sizeof buf, "%dh%02dm", s / 3600, s / 60 % 60);
+    else
+        std::snprintf(buf, sizeof buf, "%dm%02ds", s / 60, s % 60);
     return buf;
 }
 
@@ -45,15 +47,16 @@ void runSynth(SynthCommandOptions& o) {
     o.synth.validate();
     std::cerr << "synth: " << o.synth.count << " " << o.synth.split << " examples";
     if (o.synth.shard.active)
-        std::cerr << " (shard " << o.synth.shard.index << " of " << o.synth.shard.count << ": examples i with i mod "
-                  << o.synth.shard.count << " = " << o.synth.shard.index << ")";
-    std::cerr << " of "
-              << o.synth.width << "x" << o.synth.height << " (envmaps " << o.synth.envWidth << "x"
-              << o.synth.envHeight << ") -> " << o.synth.out << "\n";
+        std::cerr << " (shard " << o.synth.shard.index << " of " << o.synth.shard.count
+                  << ": examples i with i mod " << o.synth.shard.count << " = "
+                  << o.synth.shard.index << ")";
+    std::cerr << " of " << o.synth.width << "x" << o.synth.height << " (envmaps "
+              << o.synth.envWidth << "x" << o.synth.envHeight << ") -> " << o.synth.out << "\n";
     synth::writeDataset(o.synth, showProgress);
     if (o.synth.shard.active)
         std::cerr << "wrote " << o.synth.out << "/" << o.synth.shard.recordName()
-                  << "; `lighthouse merge " << o.synth.out << "` writes manifest.json once every shard is done\n";
+                  << "; `lighthouse merge " << o.synth.out
+                  << "` writes manifest.json once every shard is done\n";
     else
         std::cerr << "wrote " << o.synth.out << "/manifest.json and contact_sheet.png\n";
 }
@@ -64,29 +67,39 @@ void addSynthCommand(CLI::App& app) {
     auto o = std::make_shared<SynthCommandOptions>();
     o->synth.hdriDir = LIGHTHOUSE_HDRI_DIR;
     CLI::App* cmd = app.add_subcommand(
-        "synth", "Generate synthetic indoor scenes with exact ground truth (views, depth, envmaps, masks)");
+        "synth",
+        "Generate synthetic indoor scenes with exact ground truth (views, depth, envmaps, masks)");
     cmd->add_option("--seed", o->synth.seed, "Index of the first example (example i uses seed + i)")
         ->capture_default_str();
     cmd->add_option("--count", o->synth.count, "Number of examples")->capture_default_str();
     cmd->add_option("-o,--output", o->synth.out, "Output directory (one split)")->required();
-    cmd->add_option("--split", o->synth.split, "train or test (disjoint seeds)")->capture_default_str();
+    cmd->add_option("--split", o->synth.split, "train or test (disjoint seeds)")
+        ->capture_default_str();
     cmd->add_option("--size", o->size, "View size WxH")->capture_default_str();
-    cmd->add_option("--envmap-size", o->envmapSize, "Envmap size WxH, W = 2H")->capture_default_str();
+    cmd->add_option("--envmap-size", o->envmapSize, "Envmap size WxH, W = 2H")
+        ->capture_default_str();
     cmd->add_option("--envmaps", o->synth.envmapsPerExample, "Ground-truth envmaps per example")
         ->capture_default_str();
-    cmd->add_option("--supersample", o->synth.supersample, "Rays per pixel and axis")->capture_default_str();
-    cmd->add_option("--texel", o->synth.bake.texelSize, "Irradiance texel size, metres")->capture_default_str();
-    cmd->add_option("--gather", o->synth.bake.gatherRays, "Gather rays per texel")->capture_default_str();
-    cmd->add_option("--oracle-levels", o->synth.oracleLevels,
-                    "Also write each example's oracle volume (oracle.vdb) with this many levels (0: none); "
-                    "the target of train's voxel supervision")
+    cmd->add_option("--supersample", o->synth.supersample, "Rays per pixel and axis")
         ->capture_default_str();
-    cmd->add_option("--oracle-res", o->synth.oracleResolution, "Voxels per side of each oracle level")
+    cmd->add_option("--texel", o->synth.bake.texelSize, "Irradiance texel size, metres")
         ->capture_default_str();
-    cmd->add_option("--shard", o->shard,
-                    "K/N: write only examples i with i mod N = K (0-based) and a shard record; several shards "
-                    "share one --output, and `lighthouse merge` writes manifest.json and the contact sheet");
-    cmd->add_option("--hdri-dir", o->synth.hdriDir, "Folder of equirectangular .exr panoramas for windows")
+    cmd->add_option("--gather", o->synth.bake.gatherRays, "Gather rays per texel")
+        ->capture_default_str();
+    cmd->add_option(
+           "--oracle-levels", o->synth.oracleLevels,
+           "Also write each example's oracle volume (oracle.vdb) with this many levels (0: none); "
+           "the target of train's voxel supervision")
+        ->capture_default_str();
+    cmd->add_option("--oracle-res", o->synth.oracleResolution,
+                    "Voxels per side of each oracle level")
+        ->capture_default_str();
+    cmd->add_option(
+        "--shard", o->shard,
+        "K/N: write only examples i with i mod N = K (0-based) and a shard record; several shards "
+        "share one --output, and `lighthouse merge` writes manifest.json and the contact sheet");
+    cmd->add_option("--hdri-dir", o->synth.hdriDir,
+                    "Folder of equirectangular .exr panoramas for windows")
         ->capture_default_str();
     cmd->callback([o] { runSynth(*o); });
 }

@@ -1,6 +1,6 @@
-// `lighthouse train --data DIR [--config standard] -o model.pt [--checkpoint PATH] [--init MODEL] [--half]`
-// Data-parallel: `[--batch B] --world-size N --rank R --master HOST:PORT`, or torchrun's or
-// srun's variables (net/distributed.h, docs/distributed.md).
+// `lighthouse train --data DIR [--config standard] -o model.pt [--checkpoint PATH] [--init MODEL]
+// [--half]` Data-parallel: `[--batch B] --world-size N --rank R --master HOST:PORT`, or torchrun's
+// or srun's variables (net/distributed.h, docs/distributed.md).
 #include "cli/commands.h"
 #include "cli/common_options.h"
 #include "cli/net_commands.h"
@@ -13,61 +13,85 @@ namespace lh::cli {
 void addTrainCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<net::TrainOptions>();
     CLI::App* cmd = app.add_subcommand("train", netCommandDescription("train"));
-    cmd->add_option("--data", o->data, "Training split written by `lighthouse synth --split train`")->required();
-    cmd->add_option("--val", o->validation, "Held-out scenes for validation (default: the last 5% of --data)");
-    cmd->add_option("--config", o->config, "standard (5 x 64^3 from 192x144, 32 planes, HDR), paper, or small")
+    cmd->add_option("--data", o->data, "Training split written by `lighthouse synth --split train`")
+        ->required();
+    cmd->add_option("--val", o->validation,
+                    "Held-out scenes for validation (default: the last 5% of --data)");
+    cmd->add_option("--config", o->config,
+                    "standard (5 x 64^3 from 192x144, 32 planes, HDR), paper, or small")
         ->capture_default_str();
-    cmd->add_option("-o,--output", o->out, "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")
+    cmd->add_option("-o,--output", o->out,
+                    "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")
         ->capture_default_str();
     cmd->add_option("--checkpoint", o->checkpoint,
-                    "Resumable training state, written atomically (default: OUT.checkpoint); keep it outside the "
+                    "Resumable training state, written atomically (default: OUT.checkpoint); keep "
+                    "it outside the "
                     "repository so that a run can span sittings");
     cmd->add_option("--init", o->init,
-                    "When no checkpoint exists: fine-tune from this model (same configuration) with a fresh optimiser");
+                    "When no checkpoint exists: fine-tune from this model (same configuration) "
+                    "with a fresh optimiser");
     cmd->add_option("--supervision", o->supervision,
-                    "direct: also the oracle volume (oracle.vdb, synth --oracle-levels) and the reference depth; "
+                    "direct: also the oracle volume (oracle.vdb, synth --oracle-levels) and the "
+                    "reference depth; "
                     "paper: rendered views and envmaps only, the paper's staged schedule")
         ->capture_default_str();
     cmd->add_option("--stop-after", o->stopAfter,
-                    "End this sitting after N iterations, checkpointed; the same command resumes (0: run to the end)")
+                    "End this sitting after N iterations, checkpointed; the same command resumes "
+                    "(0: run to the end)")
         ->capture_default_str();
     o->halfModel = false;  // float32 unless --half, as every command that writes values
-    addHalfFlag(cmd, o->halfModel, "Write OUT in 16-bit halves instead of float32 (half the size; the checkpoint "
-                                   "stays float32)");
+    addHalfFlag(cmd, o->halfModel,
+                "Write OUT in 16-bit halves instead of float32 (half the size; the checkpoint "
+                "stays float32)");
     cmd->add_flag("!--no-augment", o->augment, "No exposure, white-balance and noise augmentation");
-    cmd->add_option("--iterations", o->iterations, "Training iterations (optimiser steps, of --batch examples each)")
+    cmd->add_option("--iterations", o->iterations,
+                    "Training iterations (optimiser steps, of --batch examples each)")
         ->capture_default_str();
     cmd->add_option("--lr", o->learningRate, "Adam learning rate (divided by 10 for the last 20%)")
         ->capture_default_str();
     cmd->add_option("--average-decay", o->averageDecay,
-                    "The model written and validated is the moving average of the weights with this decay per "
+                    "The model written and validated is the moving average of the weights with "
+                    "this decay per "
                     "iteration (0: the last step's weights)")
         ->capture_default_str();
-    cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")->capture_default_str();
-    cmd->add_option("--validation-scenes", o->validationScenes, "Held-out scenes scored at each validation")
+    cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")
         ->capture_default_str();
-    cmd->add_option("--checkpoint-every", o->checkpointEvery, "Iterations between checkpoints")->capture_default_str();
-    cmd->add_option("--log-every", o->logEvery, "Iterations between progress lines")->capture_default_str();
+    cmd->add_option("--validation-scenes", o->validationScenes,
+                    "Held-out scenes scored at each validation")
+        ->capture_default_str();
+    cmd->add_option("--checkpoint-every", o->checkpointEvery, "Iterations between checkpoints")
+        ->capture_default_str();
+    cmd->add_option("--log-every", o->logEvery, "Iterations between progress lines")
+        ->capture_default_str();
     cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
-    cmd->add_option("--device", o->device, "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
+    cmd->add_option("--device", o->device,
+                    "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();
     cmd->add_option("--vgg", o->vggWeights,
-                    "VGG-19 weights for the paper's perceptual loss (TorchScript; see net/vgg_loss.h); default: L1 + gradients");
+                    "VGG-19 weights for the paper's perceptual loss (TorchScript; see "
+                    "net/vgg_loss.h); default: L1 + gradients");
     cmd->add_flag("!--no-resume", o->resume, "Start afresh even if the checkpoint exists");
     cmd->add_option("--batch", o->batch,
-                    "Examples per iteration over all ranks (the gradient is their mean); a multiple of --world-size")
+                    "Examples per iteration over all ranks (the gradient is their mean); a "
+                    "multiple of --world-size")
         ->capture_default_str();
     auto dist = std::make_shared<net::DistributedFlags>();
-    cmd->add_option("--world-size", dist->worldSize,
-                    "Data-parallel: number of processes (default: WORLD_SIZE, or srun's task count, or 1)");
-    cmd->add_option("--rank", dist->rank, "Data-parallel: this process, 0 .. world size - 1 (default: RANK or SLURM_PROCID)");
+    cmd->add_option(
+        "--world-size", dist->worldSize,
+        "Data-parallel: number of processes (default: WORLD_SIZE, or srun's task count, or 1)");
+    cmd->add_option(
+        "--rank", dist->rank,
+        "Data-parallel: this process, 0 .. world size - 1 (default: RANK or SLURM_PROCID)");
     cmd->add_option("--master", dist->master,
-                    "Data-parallel: HOST:PORT of rank 0, which serves the rendezvous (default: MASTER_ADDR:MASTER_PORT)");
+                    "Data-parallel: HOST:PORT of rank 0, which serves the rendezvous (default: "
+                    "MASTER_ADDR:MASTER_PORT)");
     cmd->add_option("--dist-timeout", dist->timeoutSeconds,
-                    "Data-parallel: seconds to wait for the rendezvous and for any collective before failing")
+                    "Data-parallel: seconds to wait for the rendezvous and for any collective "
+                    "before failing")
         ->capture_default_str();
     cmd->add_option("--dist-backend", dist->backend,
-                    "Data-parallel: gloo (CPU), or nccl with --device cuda in a CUDA build (docs/distributed.md)")
+                    "Data-parallel: gloo (CPU), or nccl with --device cuda in a CUDA build "
+                    "(docs/distributed.md)")
         ->capture_default_str();
     cmd->callback([o, dist, &threads] {
         o->threads = threads;

@@ -7,7 +7,8 @@
 namespace lh::cli {
 
 CLI::Option* addStrictFlag(CLI::App* cmd, bool& strict) {
-    return cmd->add_flag("--strict", strict, "Refuse NaN/Inf/negative values in the volume instead of sanitising them");
+    return cmd->add_flag("--strict", strict,
+                         "Refuse NaN/Inf/negative values in the volume instead of sanitising them");
 }
 
 CLI::Option* addHalfFlag(CLI::App* cmd, bool& half, const std::string& help) {
@@ -16,7 +17,8 @@ CLI::Option* addHalfFlag(CLI::App* cmd, bool& half, const std::string& help) {
 
 ImageFlags addImageFlags(CLI::App* cmd, bool& png, float& exposure) {
     return {cmd->add_flag("--png", png, "With an .exr output, also write an sRGB PNG beside it"),
-            cmd->add_option("--exposure", exposure, "Multiplier of the PNGs written (EXR keeps linear radiance)")
+            cmd->add_option("--exposure", exposure,
+                            "Multiplier of the PNGs written (EXR keeps linear radiance)")
                 ->capture_default_str()};
 }
 
@@ -26,7 +28,8 @@ void ImageFlags::need(CLI::Option* images) const {
 }
 
 void requirePositiveExposure(float exposure) {
-    if (!(exposure > 0.f) || !std::isfinite(exposure)) throw InputError("--exposure must be a positive number, got " + std::to_string(exposure));
+    if (!(exposure > 0.f) || !std::isfinite(exposure))
+        throw InputError("--exposure must be a positive number, got " + std::to_string(exposure));
 }
 
 }  // namespace lh::cli

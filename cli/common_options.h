@@ -14,8 +14,9 @@ CLI::Option* addStrictFlag(CLI::App* cmd, bool& strict);
 // --half: store 16-bit halves instead of 32-bit floats; without it, floats. `help` says what
 // is stored, when it is not a volume file.
 CLI::Option* addHalfFlag(CLI::App* cmd, bool& half,
-                         const std::string& help = "Store 16-bit halves instead of 32-bit floats (half the "
-                                                   "size; values above 65000 are clamped, with a warning)");
+                         const std::string& help =
+                             "Store 16-bit halves instead of 32-bit floats (half the "
+                             "size; values above 65000 are clamped, with a warning)");
 
 // --png (with an .exr output, also write an sRGB PNG beside it) and --exposure (multiplier of
 // the PNGs written; EXR files keep linear radiance), for the commands that write images.

@@ -31,7 +31,8 @@ int reportParseError(const CLI::App& app, const CLI::ParseError& e) {
         if (c == '\n') c = ' ';
     const std::vector<CLI::App*> commands = app.get_subcommands();
     const std::string command = commands.empty() ? "" : " " + commands.front()->get_name();
-    std::cerr << "lighthouse: error: " << message << " (run 'lighthouse" << command << " --help')\n";
+    std::cerr << "lighthouse: error: " << message << " (run 'lighthouse" << command
+              << " --help')\n";
     return 1;
 }
 
@@ -39,7 +40,8 @@ int reportParseError(const CLI::App& app, const CLI::ParseError& e) {
 
 int main(int argc, char** argv) {
 #ifndef LIGHTHOUSE_HAS_NET
-    if (const char* command = lh::cli::netCommandIn(argc, argv)) return lh::cli::runInNetBinary(argv, command);
+    if (const char* command = lh::cli::netCommandIn(argc, argv))
+        return lh::cli::runInNetBinary(argv, command);
 #endif
     // Old option spellings become the new ones here, after the hand-over above, so that the
     // warnings are printed once, by the binary that runs the command.
@@ -47,7 +49,8 @@ int main(int argc, char** argv) {
     std::vector<const char*> argp;
     for (const std::string& a : args) argp.push_back(a.c_str());
 
-    CLI::App app{"lighthouse " LIGHTHOUSE_VERSION ": predict, store and render spatially-coherent lighting volumes",
+    CLI::App app{"lighthouse " LIGHTHOUSE_VERSION
+                 ": predict, store and render spatially-coherent lighting volumes",
                  "lighthouse"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Show help for every command");
@@ -56,7 +59,8 @@ int main(int argc, char** argv) {
     // --threads 1 ...`): every command created below inherits this.
     app.fallthrough();
     int threads = 0;
-    app.add_option("--threads", threads, "Worker threads (default: all cores); before or after the command")
+    app.add_option("--threads", threads,
+                   "Worker threads (default: all cores); before or after the command")
         ->check(CLI::Range(0, 1024));
     lh::cli::addInfoCommand(app);
 #ifdef LIGHTHOUSE_HAS_NET

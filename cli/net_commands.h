@@ -17,8 +17,9 @@ struct NetCommand {
 inline constexpr NetCommand kNetCommands[] = {
     {"predict", "Predict a lighting volume (MPI + completed levels) from a stereo pair"},
     {"train", "Train the prediction network on a synthetic data set (resumes from OUT.checkpoint)"},
-    {"eval", "Score the model against baselines and the oracle on a synthetic test split (Markdown table + "
-             "contact sheet)"},
+    {"eval",
+     "Score the model against baselines and the oracle on a synthetic test split (Markdown table + "
+     "contact sheet)"},
 };
 const char* netCommandDescription(const char* name);
 

@@ -30,22 +30,25 @@ const char* netCommandIn(int argc, char** argv) {
 int runInNetBinary(char** argv, const char* command) {
     const SiblingExecutable net = findSiblingExecutable("lighthouse-net");
     if (!net.found) {
-        std::cerr << "lighthouse: error: '" << command
-                  << "' needs the prediction network, which this build does not have (lighthouse-net "
-                     "was not found beside "
-                  << net.self << "; build with libtorch installed: see README)\n";
+        std::cerr
+            << "lighthouse: error: '" << command
+            << "' needs the prediction network, which this build does not have (lighthouse-net "
+               "was not found beside "
+            << net.self << "; build with libtorch installed: see README)\n";
         return 1;
     }
     ::execv(net.path.c_str(), argv);  // returns only on failure
-    std::cerr << "lighthouse: error: could not run " << net.path.string() << ": " << std::strerror(errno) << "\n";
+    std::cerr << "lighthouse: error: could not run " << net.path.string() << ": "
+              << std::strerror(errno) << "\n";
     return 1;
 }
 
 void addNetCommandEntries(CLI::App& app) {
     // CLI11's --help-all expands every command but these: their options are not known here,
     // and a command's footer is not part of the expanded listing. So the main help says it.
-    app.footer("predict, train and eval run in lighthouse-net (libtorch): 'lighthouse predict --help' "
-               "(train, eval) lists their options.");
+    app.footer(
+        "predict, train and eval run in lighthouse-net (libtorch): 'lighthouse predict --help' "
+        "(train, eval) lists their options.");
     for (const NetCommand& c : kNetCommands) {
         CLI::App* entry = app.add_subcommand(c.name, c.description);
         entry->allow_extras();

@@ -2,15 +2,15 @@
 
 #include "core/errors.h"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cctype>
-#include <filesystem>
-#include <fstream>
 #include <cerrno>
 #include <cstring>
-#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
 #include <system_error>
-#include <unistd.h>
 
 namespace lh {
 
@@ -33,8 +33,8 @@ AtomicOutput::AtomicOutput(std::string finalPath) : finalPath_(std::move(finalPa
     if (fd < 0) {
         const int error = errno;
         const std::string folder = dir.empty() ? std::string(".") : dir.string();
-        throw FileError("cannot write '" + finalPath_ + "': cannot create a file in the folder '" + folder +
-                        "': " + std::strerror(error) +
+        throw FileError("cannot write '" + finalPath_ + "': cannot create a file in the folder '" +
+                        folder + "': " + std::strerror(error) +
                         (error == EACCES || error == EPERM || error == EROFS
                              ? " (write permission is needed there; choose another output folder)"
                              : ""));

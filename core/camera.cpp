@@ -68,7 +68,7 @@ json cameraJson(const PinholeCamera& c) {
     for (int i = 0; i < 3; ++i)
         m.push_back({c.rotation(i, 0), c.rotation(i, 1), c.rotation(i, 2), c.position[i]});
     m.push_back({0.0, 0.0, 0.0, 1.0});
-    return {{"width", c.width}, {"height", c.height}, {"fx", c.fx}, {"fy", c.fy},
+    return {{"width", c.width}, {"height", c.height}, {"fx", c.fx},       {"fy", c.fy},
             {"cx", c.cx},       {"cy", c.cy},         {"cam_to_world", m}};
 }
 

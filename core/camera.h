@@ -1,5 +1,5 @@
-// Pinhole cameras and the cameras.json file (docs/conventions.md#cameras: OpenCV axes, +x right, +y down,
-// +z forward; pixel (u, v) has its centre at (u + 0.5, v + 0.5); pose = cam_to_world).
+// Pinhole cameras and the cameras.json file (docs/conventions.md#cameras: OpenCV axes, +x right, +y
+// down, +z forward; pixel (u, v) has its centre at (u + 0.5, v + 0.5); pose = cam_to_world).
 #pragma once
 
 #include "core/vec.h"
@@ -11,11 +11,11 @@
 namespace lh {
 
 struct PinholeCamera {
-    int width = 0;   // pixels
-    int height = 0;  // pixels
+    int width = 0;                          // pixels
+    int height = 0;                         // pixels
     double fx = 0, fy = 0, cx = 0, cy = 0;  // pixels
-    Mat3d rotation = Mat3d::identity();       // camera -> world rotation (columns = camera axes)
-    Vec3d position{0.0, 0.0, 0.0};           // camera centre in world units
+    Mat3d rotation = Mat3d::identity();     // camera -> world rotation (columns = camera axes)
+    Vec3d position{0.0, 0.0, 0.0};          // camera centre in world units
 
     // Direction (unit length, world frame) through continuous pixel coordinates (px, py);
     // pixel centres are at integer + 0.5.

@@ -11,7 +11,8 @@
 #define LH_PER_CPU __attribute__((target_clones("arch=x86-64-v3", "default")))
 // The same, with every call inside inlined into each version (a loop's callees would otherwise
 // run their baseline code from the x86-64-v3 version).
-#define LH_PER_CPU_FLATTENED __attribute__((flatten, target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define LH_PER_CPU_FLATTENED \
+    __attribute__((flatten, target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define LH_PER_CPU
 #define LH_PER_CPU_FLATTENED

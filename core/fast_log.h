@@ -17,8 +17,8 @@ inline double logOfOneToTwo(double x) {
     // s (1 + s2/3 + s2^2/5 + ... + s2^8/17), Estrin's scheme for a short latency.
     const double s4 = s2 * s2, s8 = s4 * s4;
     // Coefficients as constant products: a division by 3.0 would stay a division.
-    const double p01 = 1.0 + s2 * (1.0 / 3), p23 = 1.0 / 5 + s2 * (1.0 / 7), p45 = 1.0 / 9 + s2 * (1.0 / 11),
-                 p67 = 1.0 / 13 + s2 * (1.0 / 15);
+    const double p01 = 1.0 + s2 * (1.0 / 3), p23 = 1.0 / 5 + s2 * (1.0 / 7),
+                 p45 = 1.0 / 9 + s2 * (1.0 / 11), p67 = 1.0 / 13 + s2 * (1.0 / 15);
     const double q0 = p01 + p23 * s4, q1 = p45 + p67 * s4;
     const double series = q0 + q1 * s8 + s8 * s8 * (1.0 / 17);
     return 2.0 * s * series;

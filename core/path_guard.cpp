@@ -45,10 +45,12 @@ void requireOutputIsNotAnInput(const std::string& output, const std::string& out
         else if (fs::is_directory(input.path, ec) && isInside(output, input.path))
             relation = "is inside the directory given as ";
         else if (outputIsDirectory && isInside(input.path, output))
-            relation = "is a directory that holds the input given as ";  // replacing it would delete the input
+            relation = "is a directory that holds the input given as ";  // replacing it would
+                                                                         // delete the input
         if (relation.empty()) continue;
-        throw InputError("output '" + output + "' (" + outputOption + ") " + relation + input.option + " ('" +
-                         input.path + "'), which it would overwrite; choose another output path");
+        throw InputError("output '" + output + "' (" + outputOption + ") " + relation +
+                         input.option + " ('" + input.path +
+                         "'), which it would overwrite; choose another output path");
     }
 }
 

@@ -20,7 +20,9 @@ inline Vec3d cosineDirection(const Vec3d& n, double u1, double u2) {
     Vec3d t, b;
     tangentFrame(n, t, b);
     const double r = std::sqrt(u1), phi = 2 * M_PI * u2;
-    return (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u1))).unit();
+    return (t * (r * std::cos(phi)) + b * (r * std::sin(phi)) +
+            n * std::sqrt(std::max(0.0, 1 - u1)))
+        .unit();
 }
 
 }  // namespace lh

@@ -14,7 +14,9 @@ namespace lh {
 
 namespace fs = std::filesystem;
 
-std::string Shard::tag() const { return "shard-" + std::to_string(index) + "-of-" + std::to_string(count); }
+std::string Shard::tag() const {
+    return "shard-" + std::to_string(index) + "-of-" + std::to_string(count);
+}
 
 std::string Shard::recordName() const { return tag() + ".json"; }
 
@@ -22,13 +24,16 @@ Shard parseShard(const std::string& text) {
     static const std::regex form(R"(([0-9]{1,6})/([0-9]{1,6}))");
     std::smatch m;
     if (!std::regex_match(text, m, form))
-        throw InputError("--shard must be K/N with 0 <= K < N (shard K of N, 0-based), got '" + text + "'");
+        throw InputError("--shard must be K/N with 0 <= K < N (shard K of N, 0-based), got '" +
+                         text + "'");
     Shard s;
     s.index = std::stoi(m[1].str());
     s.count = std::stoi(m[2].str());
     s.active = true;
     if (s.count < 1 || s.count > 100000 || s.index >= s.count)
-        throw InputError("--shard must be K/N with 0 <= K < N <= 100000 (shard K of N, 0-based), got '" + text + "'");
+        throw InputError(
+            "--shard must be K/N with 0 <= K < N <= 100000 (shard K of N, 0-based), got '" + text +
+            "'");
     return s;
 }
 
@@ -41,7 +46,8 @@ std::vector<fs::path> recordFiles(const std::string& dir) {
     if (!fs::is_directory(dir)) return out;
     for (const auto& entry : fs::directory_iterator(dir)) {
         const std::string name = entry.path().filename().string();
-        if (entry.is_regular_file() && std::regex_match(name, kRecordName)) out.push_back(entry.path());
+        if (entry.is_regular_file() && std::regex_match(name, kRecordName))
+            out.push_back(entry.path());
     }
     std::sort(out.begin(), out.end());
     return out;
@@ -75,21 +81,24 @@ std::vector<nlohmann::json> readShardSet(const std::string& dir, const std::stri
     for (const fs::path& file : files) {
         nlohmann::json r = readRecord(file);
         if (r.value("kind", "") != kind)
-            throw FileError("shard record '" + file.string() + "' is of kind '" + r.value("kind", "") +
-                            "', not '" + kind + "'");
+            throw FileError("shard record '" + file.string() + "' is of kind '" +
+                            r.value("kind", "") + "', not '" + kind + "'");
         const int k = r.value("shard", -1), n = r.value("shards", -1);
-        if (n < 1 || k < 0 || k >= n || file.filename().string() != "shard-" + std::to_string(k) + "-of-" +
-                                                                   std::to_string(n) + ".json")
+        if (n < 1 || k < 0 || k >= n ||
+            file.filename().string() !=
+                "shard-" + std::to_string(k) + "-of-" + std::to_string(n) + ".json")
             throw FileError("shard record '" + file.string() + "' does not match its name");
         if (count >= 0 && n != count)
-            throw FileError("'" + dir + "' mixes shard records of " + std::to_string(count) + " and " +
-                            std::to_string(n) + " shards; remove the stale ones");
+            throw FileError("'" + dir + "' mixes shard records of " + std::to_string(count) +
+                            " and " + std::to_string(n) + " shards; remove the stale ones");
         count = n;
         if (!byIndex.empty())
             for (const std::string& key : sameKeys)
-                if (r.value(key, nlohmann::json()) != byIndex.begin()->second.value(key, nlohmann::json()))
+                if (r.value(key, nlohmann::json()) !=
+                    byIndex.begin()->second.value(key, nlohmann::json()))
                     throw FileError("shard records in '" + dir + "' disagree on '" + key + "' (" +
-                                    files.front().filename().string() + " and " + file.filename().string() + ")");
+                                    files.front().filename().string() + " and " +
+                                    file.filename().string() + ")");
         byIndex[k] = std::move(r);
     }
     if (int(byIndex.size()) != count) {
@@ -101,8 +110,9 @@ std::vector<nlohmann::json> readShardSet(const std::string& dir, const std::stri
                 ++shown;
             }
         if (count - int(byIndex.size()) > shown) missing += ", ...";
-        throw FileError("incomplete set of shards in '" + dir + "': " + std::to_string(byIndex.size()) + " of " +
-                        std::to_string(count) + " done, missing shard " + missing);
+        throw FileError("incomplete set of shards in '" + dir +
+                        "': " + std::to_string(byIndex.size()) + " of " + std::to_string(count) +
+                        " done, missing shard " + missing);
     }
     std::vector<nlohmann::json> out;
     for (auto& [k, r] : byIndex) out.push_back(std::move(r));

@@ -15,9 +15,10 @@
 namespace lh {
 
 struct Shard {
-    int index = 0;        // K
-    int count = 1;        // N
-    bool active = false;  // --shard was given (even 0/1): write a shard record, not the merged outputs
+    int index = 0;  // K
+    int count = 1;  // N
+    bool active =
+        false;  // --shard was given (even 0/1): write a shard record, not the merged outputs
 
     bool owns(std::size_t item) const { return item % std::size_t(count) == std::size_t(index); }
     std::string tag() const;         // "shard-K-of-N"

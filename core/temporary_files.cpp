@@ -1,5 +1,6 @@
 #include "core/temporary_files.h"
 
+#include <unistd.h>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -11,7 +12,6 @@
 #include <regex>
 #include <set>
 #include <system_error>
-#include <unistd.h>
 #include <vector>
 
 namespace lh {
@@ -47,14 +47,16 @@ const std::string& thisHostTag() {
     return tag;
 }
 
-std::string temporaryBeside(const std::string& finalPath, const std::string& kind, bool keepExtension) {
+std::string temporaryBeside(const std::string& finalPath, const std::string& kind,
+                            bool keepExtension) {
     static std::atomic<unsigned> counter{0};
     const fs::path p(finalPath);
     std::string stem = keepExtension ? p.stem().string() : p.filename().string();
     std::string ext = keepExtension ? p.extension().string() : std::string();
-    const std::string tag =
-        "." + kind + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" + thisHostTag();
-    if (1 + tag.size() + ext.size() > kMaxFileNameBytes) ext.clear();  // longer than any format's extension
+    const std::string tag = "." + kind + std::to_string(::getpid()) + "_" +
+                            std::to_string(counter++) + "_" + thisHostTag();
+    if (1 + tag.size() + ext.size() > kMaxFileNameBytes)
+        ext.clear();  // longer than any format's extension
     // A file name holds at most kMaxFileNameBytes bytes: shorten the stem, so that an output
     // name near the limit still gets a temporary.
     const std::size_t fixed = 1 + tag.size() + ext.size();
@@ -64,7 +66,8 @@ std::string temporaryBeside(const std::string& finalPath, const std::string& kin
 
 std::optional<TemporaryOwner> temporaryOwner(const std::string& fileName) {
     // ".STEM.KIND<pid>_<n>_<host>EXT", as temporaryBeside writes it.
-    static const std::regex pattern(R"(^\..*\.(tmp|old)([0-9]{1,9})_[0-9]{1,10}_([0-9a-f]{8})(\.[^.]*)?$)");
+    static const std::regex pattern(
+        R"(^\..*\.(tmp|old)([0-9]{1,9})_[0-9]{1,10}_([0-9a-f]{8})(\.[^.]*)?$)");
     std::smatch m;
     if (!std::regex_match(fileName, m, pattern)) return std::nullopt;
     return TemporaryOwner{std::stol(m[2].str()), m[3].str()};
@@ -87,7 +90,8 @@ void removeAbandonedTemporaries(const std::string& folder) {
         const std::string name = it->path().filename().string();
         if (name.empty() || name[0] != '.') continue;  // a quick test before the pattern
         const std::optional<TemporaryOwner> owner = temporaryOwner(name);
-        if (owner && owner->host == thisHostTag() && !processRuns(owner->pid)) abandoned.push_back(it->path());
+        if (owner && owner->host == thisHostTag() && !processRuns(owner->pid))
+            abandoned.push_back(it->path());
     }
     for (const fs::path& path : abandoned) {
         std::error_code ignored;

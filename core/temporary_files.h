@@ -22,7 +22,8 @@ constexpr std::size_t kMaxFileNameBytes = 255;
 // atomic). `kind` is a short word ("tmp": being written; "old": being removed). With
 // `keepExtension`, the temporary ends with `finalPath`'s extension (some writers choose the
 // format by it); the stem is shortened as needed to keep the name within kMaxFileNameBytes.
-std::string temporaryBeside(const std::string& finalPath, const std::string& kind, bool keepExtension = true);
+std::string temporaryBeside(const std::string& finalPath, const std::string& kind,
+                            bool keepExtension = true);
 
 // Removes the temporaries in `folder` ("" is the current folder) that processes of this
 // machine left behind and that no longer run: files and folders alike. Runs once per process

@@ -19,9 +19,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         try {
             again = lh::parseCamerasJson(written, "written");
         } catch (const lh::Error& e) {
-            lh::fuzz::fail(std::string("an accepted cameras.json is refused once written back: ") + e.what());
+            lh::fuzz::fail(std::string("an accepted cameras.json is refused once written back: ") +
+                           e.what());
         }
-        if (lh::camerasToJson(again) != written) lh::fuzz::fail("cameras.json changes when written back and read");
+        if (lh::camerasToJson(again) != written)
+            lh::fuzz::fail("cameras.json changes when written back and read");
     } catch (const lh::Error&) {
     }
     try {

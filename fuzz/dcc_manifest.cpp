@@ -26,13 +26,16 @@ struct Export {
 const std::vector<Export>& fixtureExports() {
     static const std::vector<Export> exports = [] {
         std::vector<Export> all;
-        for (const auto& [dcc, name] : {std::pair{lh::Dcc::Houdini, "houdini"}, std::pair{lh::Dcc::Blender, "blender"}}) {
+        for (const auto& [dcc, name] :
+             {std::pair{lh::Dcc::Houdini, "houdini"}, std::pair{lh::Dcc::Blender, "blender"}}) {
             const fs::path from = fs::path(LIGHTHOUSE_SOURCE_DIR) / "fuzz" / "dcc_fixture" / name;
             const fs::path to = lh::fuzz::scratchDir() / name;
             fs::create_directories(to);
             std::error_code ec;
-            fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::overwrite_existing, ec);
-            if (ec || !fs::exists(to / "level_0.vdb")) lh::fuzz::fail("cannot copy the export fixture " + from.string());
+            fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::overwrite_existing,
+                     ec);
+            if (ec || !fs::exists(to / "level_0.vdb"))
+                lh::fuzz::fail("cannot copy the export fixture " + from.string());
             all.push_back({dcc, to});
         }
         return all;

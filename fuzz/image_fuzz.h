@@ -14,7 +14,8 @@
 
 namespace lh::fuzz {
 
-inline int readImageInput(const std::uint8_t* data, std::size_t size, const char* fileName, bool exr) {
+inline int readImageInput(const std::uint8_t* data, std::size_t size, const char* fileName,
+                          bool exr) {
     const std::string path = writeInput(data, size, fileName);
     try {
         const ImageRGB image = readImage(path);
@@ -23,7 +24,8 @@ inline int readImageInput(const std::uint8_t* data, std::size_t size, const char
             fail("a decoded image's pixels do not match its size");
         if (!exr)
             for (float v : image.pixels)
-                if (!(v >= 0.f && v <= 1.f)) fail("an 8-bit image decoded to a value outside [0, 1]");
+                if (!(v >= 0.f && v <= 1.f))
+                    fail("an 8-bit image decoded to a value outside [0, 1]");
     } catch (const Error&) {
     }
     return 0;

@@ -47,7 +47,8 @@ void writeBroken(const fs::path& good, const std::string& stem, std::size_t keep
     writeBytes(good.parent_path() / ("broken_" + stem + "_truncated" + good.extension().string()),
                std::vector<char>(bytes.begin(), bytes.begin() + std::min(keep, bytes.size())));
     bytes[std::size_t(flipAt * double(bytes.size() - 1))] ^= char(0xFF);
-    writeBytes(good.parent_path() / ("broken_" + stem + "_flipped" + good.extension().string()), bytes);
+    writeBytes(good.parent_path() / ("broken_" + stem + "_flipped" + good.extension().string()),
+               bytes);
 }
 
 // A small colourful image: a gradient with one bright pixel.
@@ -67,7 +68,8 @@ lh::ImageRGB gradient(int width, int height) {
 // 8-bit pixels of `channels` channels (grey, grey + alpha, RGB, RGBA).
 std::vector<unsigned char> bytePixels(int width, int height, int channels) {
     std::vector<unsigned char> pixels(std::size_t(width) * height * channels);
-    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<unsigned char>(i * 37 % 256);
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+        pixels[i] = static_cast<unsigned char>(i * 37 % 256);
     return pixels;
 }
 
@@ -76,8 +78,8 @@ void writePngs(const fs::path& dir) {
     lh::writePng(gradient(6, 4), (dir / "rgb.png").string());
     for (int channels : {1, 2, 4}) {
         const auto pixels = bytePixels(5, 3, channels);
-        stbi_write_png((dir / ("channels_" + std::to_string(channels) + ".png")).c_str(), 5, 3, channels,
-                       pixels.data(), 5 * channels);
+        stbi_write_png((dir / ("channels_" + std::to_string(channels) + ".png")).c_str(), 5, 3,
+                       channels, pixels.data(), 5 * channels);
     }
     writeBroken(dir / "rgb.png", "rgb", 60, 0.6);
 }
@@ -86,10 +88,11 @@ void writePngs(const fs::path& dir) {
 // clockwise to view"): the APP1 segment goes right after the SOI marker.
 void writeRotatedJpeg(const fs::path& plain, const fs::path& out) {
     const std::vector<char> jpeg = readBytes(plain);
-    const unsigned char tiff[] = {'I', 'I', 42, 0, 8, 0, 0, 0,          // little-endian TIFF header
-                                  1, 0,                                 // one IFD entry
-                                  0x12, 0x01, 3, 0, 1, 0, 0, 0, 6, 0, 0, 0,  // Orientation, SHORT, 1, 6
-                                  0, 0, 0, 0};                          // no next IFD
+    const unsigned char tiff[] = {'I',  'I',  42, 0, 8, 0, 0, 0,  // little-endian TIFF header
+                                  1,    0,                        // one IFD entry
+                                  0x12, 0x01, 3,  0, 1, 0, 0, 0,
+                                  6,    0,    0,  0,   // Orientation, SHORT, 1, 6
+                                  0,    0,    0,  0};  // no next IFD
     std::vector<char> app1 = {'E', 'x', 'i', 'f', 0, 0};
     app1.insert(app1.end(), std::begin(tiff), std::end(tiff));
     const std::size_t length = app1.size() + 2;  // the length field counts itself
@@ -104,8 +107,8 @@ void writeJpegs(const fs::path& dir) {
     fs::create_directories(dir);
     for (int channels : {1, 3}) {
         const auto pixels = bytePixels(7, 5, channels);
-        stbi_write_jpg((dir / ("channels_" + std::to_string(channels) + ".jpg")).c_str(), 7, 5, channels,
-                       pixels.data(), 90);
+        stbi_write_jpg((dir / ("channels_" + std::to_string(channels) + ".jpg")).c_str(), 7, 5,
+                       channels, pixels.data(), 90);
     }
     writeRotatedJpeg(dir / "channels_3.jpg", dir / "exif_rotated.jpg");
     writeBroken(dir / "channels_3.jpg", "rgb", 200, 0.7);
@@ -120,7 +123,8 @@ void writeGreyExr(const fs::path& path) {
     for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = half(float(i) * 0.5f);
     Imf::OutputFile file(path.c_str(), header);
     Imf::FrameBuffer frame;
-    frame.insert("Y", Imf::Slice::Make(Imf::HALF, pixels.data(), window, sizeof(half), 5 * sizeof(half)));
+    frame.insert(
+        "Y", Imf::Slice::Make(Imf::HALF, pixels.data(), window, sizeof(half), 5 * sizeof(half)));
     file.setFrameBuffer(frame);
     file.writePixels(3);
 }
@@ -161,7 +165,8 @@ void writeVdbs(const fs::path& dir) {
     d.setValue(openvdb::Coord(0, 0, 0), std::numeric_limits<float>::quiet_NaN());
     d.setValue(openvdb::Coord(1, 0, 0), std::numeric_limits<float>::infinity());
     d.setValue(openvdb::Coord(2, 0, 0), -1.f);
-    bad.levels[0].color->getAccessor().setValue(openvdb::Coord(3, 0, 0), openvdb::Vec3s(-1.f, NAN, INFINITY));
+    bad.levels[0].color->getAccessor().setValue(openvdb::Coord(3, 0, 0),
+                                                openvdb::Vec3s(-1.f, NAN, INFINITY));
     lh::saveVolume((dir / "non_finite.vdb").string(), bad);
 
     // Blender's names (one level, `density` and `color`), without lighthouse's metadata.
@@ -179,7 +184,8 @@ void writeVdbs(const fs::path& dir) {
 void writeExports(const fs::path& fuzzDir) {
     const lh::LightingVolume volume = tinyVolume();
     const lh::Mpi mpi = tinyMpi();
-    for (const auto& [dcc, name] : {std::pair{lh::Dcc::Houdini, "houdini"}, std::pair{lh::Dcc::Blender, "blender"}}) {
+    for (const auto& [dcc, name] :
+         {std::pair{lh::Dcc::Houdini, "houdini"}, std::pair{lh::Dcc::Blender, "blender"}}) {
         const fs::path dir = fuzzDir / "dcc_fixture" / name;
         fs::create_directories(dir.parent_path());
         lh::DccExportOptions options;

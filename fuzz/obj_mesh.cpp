@@ -16,11 +16,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (mesh.indices.size() % 3 != 0 || mesh.normals.size() != mesh.positions.size())
             lh::fuzz::fail("a loaded mesh has a partial triangle or a normal per vertex missing");
         for (std::uint32_t i : mesh.indices)
-            if (i >= mesh.positions.size()) lh::fuzz::fail("a loaded mesh names a vertex it does not have");
+            if (i >= mesh.positions.size())
+                lh::fuzz::fail("a loaded mesh names a vertex it does not have");
         for (const lh::Vec3d& p : mesh.positions)
-            if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) || p.length() > 1.0 + 1e-6)
-                lh::fuzz::fail("a loaded mesh has a vertex that is not finite or outside the unit sphere");
-        for (const lh::Vec3d& n : mesh.normals)  // zero where every triangle at a vertex is degenerate
+            if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) ||
+                p.length() > 1.0 + 1e-6)
+                lh::fuzz::fail(
+                    "a loaded mesh has a vertex that is not finite or outside the unit sphere");
+        for (const lh::Vec3d& n :
+             mesh.normals)  // zero where every triangle at a vertex is degenerate
             if (!(n.length() == 0.0 || std::abs(n.length() - 1.0) < 1e-6))
                 lh::fuzz::fail("a loaded mesh has a normal that is neither unit nor zero");
     } catch (const lh::Error&) {

@@ -20,9 +20,11 @@ bool usable(const openvdb::Vec3s& v) { return usable(v.x()) && usable(v.y()) && 
 
 template <typename GridT>
 void requireSanitised(const GridT& grid) {
-    if (!usable(grid.background())) lh::fuzz::fail("grid '" + grid.getName() + "' kept a bad background");
+    if (!usable(grid.background()))
+        lh::fuzz::fail("grid '" + grid.getName() + "' kept a bad background");
     for (auto it = grid.cbeginValueAll(); it; ++it)
-        if (!usable(*it)) lh::fuzz::fail("grid '" + grid.getName() + "' kept a NaN, Inf or negative value");
+        if (!usable(*it))
+            lh::fuzz::fail("grid '" + grid.getName() + "' kept a NaN, Inf or negative value");
 }
 
 }  // namespace

@@ -15,8 +15,8 @@ DccConvention dccConvention(Dcc dcc) {
     if (dcc == Dcc::Blender) {
         c.name = "blender";
         // Rows give the DCC axes in lighthouse coordinates: X = x, Y = z, Z = -y.
-        c.worldToDcc = Mat3d(1, 0, 0,   //
-                             0, 0, 1,   //
+        c.worldToDcc = Mat3d(1, 0, 0,  //
+                             0, 0, 1,  //
                              0, -1, 0);
         c.axesText = "X = x, Y = z, Z = -y (Z-up; lighthouse forward +z is Blender +Y)";
         c.colorGrid = "color";
@@ -35,7 +35,8 @@ DccConvention dccConvention(Dcc dcc) {
 
 Dcc parseDcc(const std::string& text, const std::string& what) {
     std::string t = text;
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+    std::transform(t.begin(), t.end(), t.begin(),
+                   [](unsigned char ch) { return char(std::tolower(ch)); });
     if (t == "blender") return Dcc::Blender;
     if (t == "houdini") return Dcc::Houdini;
     throw InputError(what + ": expected 'blender' or 'houdini', got '" + text + "'");

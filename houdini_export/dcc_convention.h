@@ -16,10 +16,10 @@ enum class Dcc { Blender, Houdini };
 
 struct DccConvention {
     Dcc dcc = Dcc::Blender;
-    std::string name;         // "blender" or "houdini"
-    Mat3d worldToDcc;         // rotation, lighthouse world -> DCC world (column vectors)
-    std::string axesText;     // human-readable form of worldToDcc, for manifests and messages
-    std::string colorGrid;    // radiance grid name: "color" (Blender) or "Cd" (Houdini)
+    std::string name;       // "blender" or "houdini"
+    Mat3d worldToDcc;       // rotation, lighthouse world -> DCC world (column vectors)
+    std::string axesText;   // human-readable form of worldToDcc, for manifests and messages
+    std::string colorGrid;  // radiance grid name: "color" (Blender) or "Cd" (Houdini)
     // Premultiplied emission as three FloatGrids `emission_r/g/b` (Blender) instead of one
     // Vec3SGrid `emission` (Houdini). Blender 3.4's Cycles misreads Vec3 grids through the
     // Attribute node (measured on an opaque block of radiance 1: 2.8 inside, up to 5 at its

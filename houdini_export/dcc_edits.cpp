@@ -23,13 +23,17 @@ std::optional<std::vector<LevelChecksums>> readManifestChecksums(const nlohmann:
     const std::string where = "'" + manifestPath + "'";
     const nlohmann::json& levels = manifest.at("levels");
     std::size_t withChecksums = 0;
-    for (const auto& entry : levels) withChecksums += entry.is_object() && entry.contains("checksums");
+    for (const auto& entry : levels)
+        withChecksums += entry.is_object() && entry.contains("checksums");
     if (withChecksums == 0 && !manifest.contains("checksum")) return std::nullopt;
     if (!manifest.contains("checksum") || manifest["checksum"] != kGridChecksumMethod)
-        throw FileError(where + ": \"checksum\" is " + (manifest.contains("checksum") ? manifest["checksum"].dump() : "missing") +
-                        ", expected \"" + kGridChecksumMethod + "\" (a manifest edited by hand, or from another version)");
+        throw FileError(where + ": \"checksum\" is " +
+                        (manifest.contains("checksum") ? manifest["checksum"].dump() : "missing") +
+                        ", expected \"" + kGridChecksumMethod +
+                        "\" (a manifest edited by hand, or from another version)");
     if (withChecksums != levels.size())
-        throw FileError(where + ": only " + std::to_string(withChecksums) + " of " + std::to_string(levels.size()) +
+        throw FileError(where + ": only " + std::to_string(withChecksums) + " of " +
+                        std::to_string(levels.size()) +
                         " levels have \"checksums\" (a manifest edited by hand?)");
     std::vector<LevelChecksums> all;
     for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -38,8 +42,10 @@ std::optional<std::vector<LevelChecksums>> readManifestChecksums(const nlohmann:
         LevelChecksums level;
         if (ok)
             for (const auto& [name, value] : c.items()) {
-                if (!isChecksum(value)) ok = false;
-                else level[name] = value.get<std::string>();
+                if (!isChecksum(value))
+                    ok = false;
+                else
+                    level[name] = value.get<std::string>();
             }
         if (!ok)
             throw FileError(where + ": level " + std::to_string(k) +
@@ -63,7 +69,8 @@ std::size_t disagreeingVoxels(const openvdb::FloatGrid& density, const openvdb::
         const float sigma = *it;
         if (!(sigma > 0.f)) continue;
         if (!it.isVoxelValue()) continue;  // import voxelises tiles before it asks
-        const openvdb::Vec3s em = e.getValue(it.getCoord()), premultiplied = c.getValue(it.getCoord()) * sigma;
+        const openvdb::Vec3s em = e.getValue(it.getCoord()),
+                             premultiplied = c.getValue(it.getCoord()) * sigma;
         for (int k = 0; k < 3; ++k) {
             const float larger = std::max(std::abs(em[k]), std::abs(premultiplied[k]));
             if (!(std::abs(em[k] - premultiplied[k]) <= 0.01f * larger + 1e-6f)) {

@@ -6,8 +6,8 @@
 // (or that the manifest does not list) was edited. dcc_import.h says which grid then wins.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <openvdb/openvdb.h>
+#include <nlohmann/json.hpp>
 
 #include <map>
 #include <optional>

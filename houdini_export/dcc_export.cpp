@@ -5,14 +5,14 @@
 #include "houdini_export/grid_checksum.h"
 #include "houdini_export/shells.h"
 
-#include <nlohmann/json.hpp>
 #include <openvdb/io/File.h>
+#include <nlohmann/json.hpp>
 
+#include <fcntl.h>  // AT_FDCWD
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>  // renameat2 (glibc; g++ defines _GNU_SOURCE)
-#include <fcntl.h>  // AT_FDCWD
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -53,7 +53,7 @@ openvdb::Mat4d rotationAsMat4(const Mat3d& r) {
 struct LevelGrids {
     openvdb::FloatGrid::Ptr density;
     openvdb::FloatGrid::Ptr emissionChannel[3];  // Blender
-    openvdb::Vec3SGrid::Ptr emission, color;      // emission: Houdini
+    openvdb::Vec3SGrid::Ptr emission, color;     // emission: Houdini
     openvdb::GridCPtrVec all() const {
         openvdb::GridCPtrVec v{density};
         if (emission) v.push_back(emission);
@@ -65,7 +65,8 @@ struct LevelGrids {
 };
 
 // A lighthouse transform in the program's axes (and, for Blender, its cell convention).
-openvdb::math::Transform::Ptr toDccTransform(const openvdb::math::Transform& xf, const DccConvention& conv) {
+openvdb::math::Transform::Ptr toDccTransform(const openvdb::math::Transform& xf,
+                                             const DccConvention& conv) {
     auto out = xf.copy();
     if (conv.indexShift != 0.0) out->preTranslate(Vec3d(conv.indexShift));
     out->postMult(rotationAsMat4(conv.worldToDcc));
@@ -94,7 +95,8 @@ LevelGrids convertShell(const VolumeLevel& shell, int k, const DccConvention& co
         clampForDcc(sigma, rgb, options.maxValue, sigmaChanged, colorChanged);
         if (sigmaChanged && before > 0 && std::isfinite(before)) {
             ++clamp.densityClamped;
-            if (double(sigma) * voxel < 10.0 && double(before) * voxel >= 10.0) ++clamp.nowTranslucent;
+            if (double(sigma) * voxel < 10.0 && double(before) * voxel >= 10.0)
+                ++clamp.nowTranslucent;
         } else if (sigmaChanged) {
             ++clamp.densityClamped;
         }
@@ -103,7 +105,8 @@ LevelGrids convertShell(const VolumeLevel& shell, int k, const DccConvention& co
         d.setValueOn(it.getCoord(), sigma);
         if (g.emission) g.emission->tree().setValueOn(it.getCoord(), rgb * sigma);
         for (int ch = 0; ch < 3; ++ch)
-            if (g.emissionChannel[ch]) g.emissionChannel[ch]->tree().setValueOn(it.getCoord(), rgb[ch] * sigma);
+            if (g.emissionChannel[ch])
+                g.emissionChannel[ch]->tree().setValueOn(it.getCoord(), rgb[ch] * sigma);
         c.setValueOn(it.getCoord(), rgb);
     }
     const openvdb::Vec3i lo = shell.domain.min().asVec3i(), hi = shell.domain.max().asVec3i();
@@ -119,7 +122,8 @@ LevelGrids convertShell(const VolumeLevel& shell, int k, const DccConvention& co
     g.density->setGridClass(openvdb::GRID_FOG_VOLUME);
     if (g.emission) {
         g.emission->setName(kDccEmissionGrid);
-        g.emission->setVectorType(openvdb::VEC_INVARIANT);  // Houdini: "Tuple/Color", not a direction
+        g.emission->setVectorType(
+            openvdb::VEC_INVARIANT);  // Houdini: "Tuple/Color", not a direction
     }
     for (int ch = 0; ch < 3; ++ch)
         if (g.emissionChannel[ch]) g.emissionChannel[ch]->setName(kDccEmissionChannelGrids[ch]);
@@ -138,7 +142,8 @@ openvdb::MetaMap exportMetadata(const DccConvention& conv, const std::string& ex
     return meta;
 }
 
-void writeVdbFile(const std::string& path, const openvdb::GridCPtrVec& grids, const openvdb::MetaMap& meta) {
+void writeVdbFile(const std::string& path, const openvdb::GridCPtrVec& grids,
+                  const openvdb::MetaMap& meta) {
     try {
         openvdb::io::File file(path);
         file.setCompression(openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK);
@@ -159,7 +164,8 @@ void writeLevelFile(const std::string& path, const LevelGrids& g, int k, int lev
 
 // The MPI's planes as volume_io writes them (the camera in lighthouse's frame, which import
 // reads back), their transforms in the program's axes so that the planes show where they are.
-void writeMpiFile(const std::string& path, const Mpi& mpi, const DccConvention& conv, const std::string& exportId) {
+void writeMpiFile(const std::string& path, const Mpi& mpi, const DccConvention& conv,
+                  const std::string& exportId) {
     openvdb::MetaMap meta = exportMetadata(conv, exportId);
     meta.insertMeta("lighthouse_mpi_camera", openvdb::StringMetadata(cameraToJson(mpi.camera)));
     openvdb::GridCPtrVec grids;
@@ -227,13 +233,16 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
     if (finalDir.filename().empty()) finalDir = finalDir.parent_path();  // "out/" -> "out"
     const fs::path parent = finalDir.parent_path().empty() ? fs::path(".") : finalDir.parent_path();
     if (!fs::is_directory(parent))
-        throw FileError("cannot write '" + outDir + "': directory '" + parent.string() + "' does not exist");
+        throw FileError("cannot write '" + outDir + "': directory '" + parent.string() +
+                        "' does not exist");
     if (fs::exists(finalDir) && !isExportDirectory(finalDir))
-        throw FileError("'" + outDir + "' exists and is not a lighthouse export (no " + kDccManifestName +
-                        "); refusing to overwrite it");
+        throw FileError("'" + outDir + "' exists and is not a lighthouse export (no " +
+                        kDccManifestName + "); refusing to overwrite it");
     if (fs::exists(finalDir) && !options.replaceExisting)
-        throw FileError("'" + outDir + "' is an existing export, and edits made to it in Blender or Houdini would be "
-                        "lost; pass --force to replace it, or choose another directory");
+        throw FileError(
+            "'" + outDir +
+            "' is an existing export, and edits made to it in Blender or Houdini would be "
+            "lost; pass --force to replace it, or choose another directory");
 
     DccExportReport report;
     const std::vector<VolumeLevel> shells = makeShells(volume);
@@ -248,17 +257,20 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
         manifest["for"] = conv.name;
         manifest["axes"] = conv.axesText;
         nlohmann::json rot = nlohmann::json::array();
-        for (int i = 0; i < 3; ++i) rot.push_back({conv.worldToDcc[i][0], conv.worldToDcc[i][1], conv.worldToDcc[i][2]});
+        for (int i = 0; i < 3; ++i)
+            rot.push_back({conv.worldToDcc[i][0], conv.worldToDcc[i][1], conv.worldToDcc[i][2]});
         manifest["world_to_dcc"] = rot;
         manifest["index_shift"] = conv.indexShift;
         manifest["units"] = "scene units (metres); density per unit length";
-        manifest["grids"] = {{"density", kDccDensityGrid},
-                             {"emission", conv.splitEmission ? nlohmann::json(kDccEmissionChannelGrids)
-                                                             : nlohmann::json(kDccEmissionGrid)},
-                             {"color", conv.colorGrid}};
+        manifest["grids"] = {
+            {"density", kDccDensityGrid},
+            {"emission", conv.splitEmission ? nlohmann::json(kDccEmissionChannelGrids)
+                                            : nlohmann::json(kDccEmissionGrid)},
+            {"color", conv.colorGrid}};
         manifest["max_value"] = options.maxValue;
         if (volume.layout) manifest["layout"] = nlohmann::json::parse(volume.layout->toJson());
-        if (volume.refCamera) manifest["ref_camera"] = nlohmann::json::parse(cameraToJson(*volume.refCamera));
+        if (volume.refCamera)
+            manifest["ref_camera"] = nlohmann::json::parse(cameraToJson(*volume.refCamera));
         nlohmann::json levels = nlohmann::json::array();
         for (std::size_t k = 0; k < shells.size(); ++k) {
             const LevelGrids g = convertShell(shells[k], int(k), conv, options, report.clamp);
@@ -287,7 +299,8 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
                                {"radiance_voxels", report.clamp.radianceClamped},
                                {"now_translucent_voxels", report.clamp.nowTranslucent}};
         std::ofstream(tmp / kDccManifestName) << manifest.dump(2) << "\n";
-        if (!fs::is_regular_file(tmp / kDccManifestName) || fs::file_size(tmp / kDccManifestName) == 0)
+        if (!fs::is_regular_file(tmp / kDccManifestName) ||
+            fs::file_size(tmp / kDccManifestName) == 0)
             throw FileError("cannot write '" + (finalDir / kDccManifestName).string() + "'");
         if (fs::exists(finalDir))
             replaceExport(tmp, finalDir);
@@ -305,10 +318,12 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
     if (report.clamp.changedAnything()) {
         report.warnings.push_back(
             "values above " + std::to_string(int(options.maxValue)) +
-            " (half-precision limit) were clamped: density in " + std::to_string(report.clamp.densityClamped) +
-            " voxel(s), radiance in " + std::to_string(report.clamp.radianceClamped) + " voxel(s)" +
+            " (half-precision limit) were clamped: density in " +
+            std::to_string(report.clamp.densityClamped) + " voxel(s), radiance in " +
+            std::to_string(report.clamp.radianceClamped) + " voxel(s)" +
             (report.clamp.nowTranslucent
-                 ? "; " + std::to_string(report.clamp.nowTranslucent) + " opaque voxel(s) became translucent"
+                 ? "; " + std::to_string(report.clamp.nowTranslucent) +
+                       " opaque voxel(s) became translucent"
                  : std::string("; opaque voxels stay opaque, so surfaces keep their radiance")));
     }
     return report;

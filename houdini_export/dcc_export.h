@@ -47,7 +47,7 @@ struct DccClampReport {
 };
 
 struct DccExportReport {
-    std::vector<std::string> files;  // written level files, coarsest first
+    std::vector<std::string> files;         // written level files, coarsest first
     std::vector<std::size_t> activeVoxels;  // per level shell
     std::string mpiFile;                    // the MPI's file, "" when there was no MPI
     DccClampReport clamp;
@@ -58,8 +58,8 @@ struct DccExportReport {
 // beside it, which replaces `outDir` only once complete, in one step where the file system
 // allows (a process killed at any moment leaves the old export or the new one, whole). The
 // temporaries of an export that was killed are removed by the next one. An existing `outDir`
-// is replaced only if it is itself an export (holds a manifest.json); otherwise FileError. Throws InputError
-// for an invalid volume. `mpi`, if given, is written too (mpi.vdb).
+// is replaced only if it is itself an export (holds a manifest.json); otherwise FileError. Throws
+// InputError for an invalid volume. `mpi`, if given, is written too (mpi.vdb).
 DccExportReport exportForDcc(const LightingVolume& volume, const std::string& outDir,
                              const DccExportOptions& options = {}, const Mpi* mpi = nullptr);
 

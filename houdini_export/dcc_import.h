@@ -35,9 +35,9 @@ namespace lh {
 
 struct DccImportReport {
     std::vector<std::string> warnings;  // one line each, for the CLI's `warning:` lines
-    std::vector<std::string> notes;     // what import chose where it had a choice (a level's radiance)
-    std::optional<Mpi> mpi;             // the export's MPI, if it carried one
-    std::string mpiFile;                // and its file
+    std::vector<std::string> notes;  // what import chose where it had a choice (a level's radiance)
+    std::optional<Mpi> mpi;          // the export's MPI, if it carried one
+    std::string mpiFile;             // and its file
 };
 
 // Throws FileError naming the file (and grid) if `dir` is not an export for `dcc`, the manifest

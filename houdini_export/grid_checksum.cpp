@@ -53,7 +53,8 @@ std::string checksumOf(const GridT& grid) {
         }
     }
     char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(mix(sum ^ mix(count))));
+    std::snprintf(text, sizeof text, "%016llx",
+                  static_cast<unsigned long long>(mix(sum ^ mix(count))));
     return text;
 }
 

@@ -70,7 +70,8 @@ void fillCoveredFromFiner(LightingVolume& volume) {
         for (std::size_t f = k + 1; f < volume.levels.size(); ++f) {
             const WorldBox box = volume.levels[f].worldBounds();
             for (int c = 0; c < 8; ++c) {
-                const Vec3d corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
+                const Vec3d corner((c & 1) ? box.max.x() : box.min.x(),
+                                   (c & 2) ? box.max.y() : box.min.y(),
                                    (c & 4) ? box.max.z() : box.min.z());
                 const Vec3d q = xf.worldToIndex(corner);
                 region.expand(openvdb::Coord::floor(q));

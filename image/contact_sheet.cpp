@@ -16,7 +16,8 @@ ImageRGB contactSheet(const std::vector<std::vector<ImageRGB>>& rows, int tileHe
         std::vector<ImageRGB> line;
         int w = gap;
         for (const auto& img : row) {
-            const int tw = std::max(1, int(std::lround(double(img.width) * tileHeight / img.height)));
+            const int tw =
+                std::max(1, int(std::lround(double(img.width) * tileHeight / img.height)));
             line.push_back(resizeImage(img, tw, tileHeight));
             w += tw + gap;
         }

@@ -1,5 +1,5 @@
-// Equirectangular envmap layout (docs/conventions.md#envmap-layout). Pixel (row r, column c) of a W x H map,
-// continuous centre (r + 0.5, c + 0.5):
+// Equirectangular envmap layout (docs/conventions.md#envmap-layout). Pixel (row r, column c) of a W
+// x H map, continuous centre (r + 0.5, c + 0.5):
 //   phi   = pi * (r + 0.5) / H            (polar angle from up, -y)
 //   theta = 2 pi (c + 0.5) / W - pi       (azimuth, 0 = forward +z)
 //   d     = (sin phi sin theta, -cos phi, sin phi cos theta)
@@ -18,7 +18,8 @@ inline double envmapAzimuth(double column, int width) { return 2.0 * M_PI * colu
 
 // The direction from the sines and cosines of phi and theta: renderers that tabulate them per
 // row and per column (one sincos each, not one per pixel) share this one formula.
-inline Vec3d envmapDirectionFromAngles(double sinPhi, double cosPhi, double sinTheta, double cosTheta) {
+inline Vec3d envmapDirectionFromAngles(double sinPhi, double cosPhi, double sinTheta,
+                                       double cosTheta) {
     return Vec3d(sinPhi * sinTheta, -cosPhi, sinPhi * cosTheta);
 }
 
@@ -26,7 +27,8 @@ inline Vec3d envmapDirectionFromAngles(double sinPhi, double cosPhi, double sinT
 // centres are at integer + 0.5.
 inline Vec3d envmapDirection(double row, double column, int width, int height) {
     const double phi = envmapPolarAngle(row, height), theta = envmapAzimuth(column, width);
-    return envmapDirectionFromAngles(std::sin(phi), std::cos(phi), std::sin(theta), std::cos(theta));
+    return envmapDirectionFromAngles(std::sin(phi), std::cos(phi), std::sin(theta),
+                                     std::cos(theta));
 }
 
 inline Vec3d envmapPixelDirection(int row, int column, int width, int height) {

@@ -1,5 +1,5 @@
-// Looking up an equirectangular envmap (docs/conventions.md#envmap-layout) along a direction, bilinear,
-// wrapping around in azimuth and clamping at the poles.
+// Looking up an equirectangular envmap (docs/conventions.md#envmap-layout) along a direction,
+// bilinear, wrapping around in azimuth and clamping at the poles.
 #pragma once
 
 #include "image/envmap_layout.h"
@@ -19,8 +19,10 @@ inline Vec3d sampleEnvmap(const ImageRGB& envmap, const Vec3d& direction) {
     const auto wrap = [&](int x) { return (x % envmap.width + envmap.width) % envmap.width; };
     Vec3d result(0.0);
     for (int c = 0; c < 3; ++c) {
-        const double top = (1 - wx) * envmap.at(wrap(x0), y0)[c] + wx * envmap.at(wrap(x0 + 1), y0)[c];
-        const double bottom = (1 - wx) * envmap.at(wrap(x0), y1)[c] + wx * envmap.at(wrap(x0 + 1), y1)[c];
+        const double top =
+            (1 - wx) * envmap.at(wrap(x0), y0)[c] + wx * envmap.at(wrap(x0 + 1), y0)[c];
+        const double bottom =
+            (1 - wx) * envmap.at(wrap(x0), y1)[c] + wx * envmap.at(wrap(x0 + 1), y1)[c];
         result[c] = (1 - wy) * top + wy * bottom;
     }
     return result;

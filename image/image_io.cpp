@@ -73,8 +73,8 @@ ImageRGB readExr(const std::string& path) {
         checkReadableSize(width, height, path);
 
         const Imf::ChannelList& channels = file.header().channels();
-        const bool grey = !channels.findChannel("R") && !channels.findChannel("G") &&
-                          !channels.findChannel("B");
+        const bool grey =
+            !channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B");
         if (grey && !channels.findChannel("Y"))
             throw FileError("cannot read '" + path + "': it has no R, G, B or Y channel");
 
@@ -119,7 +119,8 @@ std::string announcedFormat(const std::string& path) {
     if (!f) return "";
     const std::size_t n = std::fread(magic, 1, sizeof magic, f);
     std::fclose(f);
-    if (n == 4 && magic[0] == 0x89 && magic[1] == 'P' && magic[2] == 'N' && magic[3] == 'G') return "PNG";
+    if (n == 4 && magic[0] == 0x89 && magic[1] == 'P' && magic[2] == 'N' && magic[3] == 'G')
+        return "PNG";
     if (n >= 3 && magic[0] == 0xFF && magic[1] == 0xD8 && magic[2] == 0xFF) return "JPEG";
     return "";
 }
@@ -129,7 +130,8 @@ std::string announcedFormat(const std::string& path) {
 [[noreturn]] void throwStbFailure(const std::string& path) {
     const std::string reason = stbReason(), format = announcedFormat(path);
     if (!format.empty())
-        throw FileError("'" + path + "': truncated or corrupt " + format + " (the decoder stopped at: " + reason + ")");
+        throw FileError("'" + path + "': truncated or corrupt " + format +
+                        " (the decoder stopped at: " + reason + ")");
     throw FileError("cannot read '" + path + "': not a PNG or JPEG file (" + reason + ")");
 }
 
@@ -138,7 +140,8 @@ ImageRGB readStb(const std::string& path) {
     // only PNG and JPEG reach it. A 13-byte PGM header named .png made it allocate 3.9 GB
     // (fuzz/corpus/image_png/crash_pgm_named_png_huge.png).
     if (announcedFormat(path).empty())
-        throw FileError("cannot read '" + path + "': not a PNG or JPEG file (it starts with neither signature)");
+        throw FileError("cannot read '" + path +
+                        "': not a PNG or JPEG file (it starts with neither signature)");
     int width = 0, height = 0, fileChannels = 0;
     // Header only: the size is checked before stb allocates the pixels.
     if (!stbi_info(path.c_str(), &width, &height, &fileChannels)) throwStbFailure(path);
@@ -146,8 +149,7 @@ ImageRGB readStb(const std::string& path) {
 
     const int wantedChannels = 3;  // stb converts grey and alpha images to RGB
     std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> bytes(
-        stbi_load(path.c_str(), &width, &height, &fileChannels, wantedChannels),
-        &stbi_image_free);
+        stbi_load(path.c_str(), &width, &height, &fileChannels, wantedChannels), &stbi_image_free);
     if (!bytes) throwStbFailure(path);
 
     static const std::array<float, 256> toLinear = [] {
@@ -190,9 +192,8 @@ void writeExr(const ImageRGB& image, const std::string& path) {
         for (int c = 0; c < 3; ++c) {
             header.channels().insert(kRgbNames[c], Imf::Channel(Imf::FLOAT));
             frame.insert(kRgbNames[c],
-                         Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c,
-                                          header.dataWindow(), kPixelBytes,
-                                          kPixelBytes * std::size_t(image.width)));
+                         Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, header.dataWindow(),
+                                          kPixelBytes, kPixelBytes * std::size_t(image.width)));
         }
         Imf::OutputFile file(out.tempPath().c_str(), header);  // closed at end of scope
         file.setFrameBuffer(frame);
@@ -242,8 +243,9 @@ ImageRGB readImage(const std::string& path) {
     // Checked here for a clear message: the decoders report a missing file vaguely.
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
-        throw FileError("cannot read '" + path + "': " +
-                        (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
+        throw FileError(
+            "cannot read '" + path +
+            "': " + (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
     return exr ? readExr(path) : readStb(path);
 }
 

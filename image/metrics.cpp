@@ -42,9 +42,7 @@ bool counts(const std::vector<std::uint8_t>* mask, std::size_t pixel) {
     return !mask || (*mask)[pixel] != 0;
 }
 
-double displayValue(float linear) {
-    return srgbEncode(std::clamp(linear, 0.0f, 1.0f));
-}
+double displayValue(float linear) { return srgbEncode(std::clamp(linear, 0.0f, 1.0f)); }
 
 // atan2 of the cross and dot products stays accurate near 0 and 180 degrees, where acos of
 // the normalised dot product loses half its digits.
@@ -152,8 +150,8 @@ double logLuminanceRmse(const ImageRGB& pred, const ImageRGB& gt,
     for (std::size_t p = 0; p < pixels; ++p) {
         if (!counts(mask, p)) continue;
         // log1p keeps the digits of a dim pixel, where ln(1 + Y) is close to Y.
-        const double d = std::log1p(luminance(&pred.pixels[3 * p])) -
-                         std::log1p(luminance(&gt.pixels[3 * p]));
+        const double d =
+            std::log1p(luminance(&pred.pixels[3 * p])) - std::log1p(luminance(&gt.pixels[3 * p]));
         squares += d * d;
         ++used;
     }
@@ -162,8 +160,13 @@ double logLuminanceRmse(const ImageRGB& pred, const ImageRGB& gt,
 
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
                              const std::vector<std::uint8_t>* mask) {
-    EnvmapMetrics m{psnr(pred, gt),          angularErrorDegrees(pred, gt), kNaN, kNaN,
-                    irradianceError(pred, gt), logLuminanceRmse(pred, gt),   kNaN};
+    EnvmapMetrics m{psnr(pred, gt),
+                    angularErrorDegrees(pred, gt),
+                    kNaN,
+                    kNaN,
+                    irradianceError(pred, gt),
+                    logLuminanceRmse(pred, gt),
+                    kNaN};
     if (mask) {
         m.psnrObserved = psnr(pred, gt, mask);
         m.angularObserved = angularErrorDegrees(pred, gt, mask);

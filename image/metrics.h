@@ -36,10 +36,10 @@ double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
 enum class AxisNormal { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
 constexpr int kAxisNormals = 6;
 
-// Diffuse irradiance of an equirectangular envmap (docs/conventions.md#envmap-layout) at normal n, per
-// RGB channel: E(n) = sum over pixels of L(d) max(0, n.d) dOmega, with the pixel's solid
-// angle dOmega = (2 pi / W) (pi / H) sin phi. Units: radiance times steradians (a constant
-// L = 1 gives pi). Throws InputError for an empty or non-finite envmap.
+// Diffuse irradiance of an equirectangular envmap (docs/conventions.md#envmap-layout) at normal n,
+// per RGB channel: E(n) = sum over pixels of L(d) max(0, n.d) dOmega, with the pixel's solid angle
+// dOmega = (2 pi / W) (pi / H) sin phi. Units: radiance times steradians (a constant L = 1 gives
+// pi). Throws InputError for an empty or non-finite envmap.
 struct AxisIrradiance {
     double rgb[kAxisNormals][3];  // [AxisNormal][channel]
     const double* at(AxisNormal n) const { return rgb[int(n)]; }
@@ -66,12 +66,12 @@ double logLuminanceRmse(const ImageRGB& pred, const ImageRGB& gt,
 // are NaN without a mask. Irradiance is an integral over the whole sphere, so it has no
 // observed variant.
 struct EnvmapMetrics {
-    double psnrAll;          // dB
-    double angularAll;       // degrees
-    double psnrObserved;     // dB
-    double angularObserved;  // degrees
-    double irradianceError = std::numeric_limits<double>::quiet_NaN();      // ratio
-    double logLuminanceAll = std::numeric_limits<double>::quiet_NaN();      // ln units
+    double psnrAll;                                                          // dB
+    double angularAll;                                                       // degrees
+    double psnrObserved;                                                     // dB
+    double angularObserved;                                                  // degrees
+    double irradianceError = std::numeric_limits<double>::quiet_NaN();       // ratio
+    double logLuminanceAll = std::numeric_limits<double>::quiet_NaN();       // ln units
     double logLuminanceObserved = std::numeric_limits<double>::quiet_NaN();  // ln units
 };
 

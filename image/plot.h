@@ -16,8 +16,9 @@ namespace lh {
 struct PlotAxis {
     std::string label;
     bool logarithmic = false;
-    double linearStep = 10;  // grid spacing of a linear axis; <= 0: a 1-2-5 step, about 4 to 10 lines
-    double minimum = 0;      // log axes: values below are drawn at this floor (> 0)
+    double linearStep =
+        10;              // grid spacing of a linear axis; <= 0: a 1-2-5 step, about 4 to 10 lines
+    double minimum = 0;  // log axes: values below are drawn at this floor (> 0)
     // The axis spans at least [from, to] whatever the data (e.g. panels sharing an x range).
     std::optional<double> from{}, to{};
 };
@@ -31,9 +32,9 @@ struct PlotSeries {
     std::string name;    // in the legend (empty: none)
     std::string colour;  // CSS colour: #rgb, #rrggbb, or black, white, red, green, blue, grey
     std::vector<PlotPoint> points;
-    bool joined = false;  // draw a polyline through the points in order
+    bool joined = false;           // draw a polyline through the points in order
     std::vector<PlotPoint> curve;  // drawn as a polyline (in order) beside the points
-    bool dots = true;     // draw each point as a dot
+    bool dots = true;              // draw each point as a dot
 };
 
 // The points that no other point beats on both axes (smaller x and smaller y: for time

@@ -18,15 +18,23 @@ namespace lh {
 
 namespace {
 
-Vec3d times(const Vec3d& a, const Vec3d& b) { return Vec3d(a.x() * b.x(), a.y() * b.y(), a.z() * b.z()); }
+Vec3d times(const Vec3d& a, const Vec3d& b) {
+    return Vec3d(a.x() * b.x(), a.y() * b.y(), a.z() * b.z());
+}
 
 class Inserter {
 public:
-    Inserter(const RenderVolume& volume, const std::vector<InsertedObject>& objects, const InsertOptions& o)
-        : volume_(volume), objects_(objects), options_(o), meshes_(meshesOf(objects)), tracer_(meshes_) {
+    Inserter(const RenderVolume& volume, const std::vector<InsertedObject>& objects,
+             const InsertOptions& o)
+        : volume_(volume),
+          objects_(objects),
+          options_(o),
+          meshes_(meshesOf(objects)),
+          tracer_(meshes_) {
         if (o.singleEnvmap)
             for (const auto& obj : objects)
-                envmaps_.push_back(renderEnvmap(volume, obj.centre, {2 * o.envmapHeight, o.envmapHeight, o.march}));
+                envmaps_.push_back(renderEnvmap(volume, obj.centre,
+                                                {2 * o.envmapHeight, o.envmapHeight, o.march}));
     }
 
     const ObjectTracer& tracer() const { return tracer_; }
@@ -48,17 +56,20 @@ public:
     // Radiance leaving an object's surface point towards the ray's origin.
     Vec3d shade(const ObjectHit& hit, const Vec3d& dir, int depth, Random& rng) const {
         const Material& m = objects_[hit.object].material;
-        const Vec3d p = hit.position + hit.geometricNormal * (1e-4 * (1 + objects_[hit.object].radius));
+        const Vec3d p =
+            hit.position + hit.geometricNormal * (1e-4 * (1 + objects_[hit.object].radius));
         // `samples` rays per pixel at the first surface, shared by the pixel's primary rays;
         // one ray per bounce after it (path tracing).
-        const int perPrimary = std::max(1, options_.samples / (options_.pixelSamples * options_.pixelSamples));
+        const int perPrimary =
+            std::max(1, options_.samples / (options_.pixelSamples * options_.pixelSamples));
         const int count = m.kind == Material::Kind::Mirror ? 1 : (depth == 1 ? perPrimary : 1);
         const int strata = std::max(1, int(std::sqrt(double(count))));
         Vec3d sum(0.0);
         int below = 0;
         for (int s = 0; s < count; ++s) {
             double u1 = rng.uniform(), u2 = rng.uniform();
-            if (s < strata * strata) u1 = (s / strata + u1) / strata, u2 = (s % strata + u2) / strata;
+            if (s < strata * strata)
+                u1 = (s / strata + u1) / strata, u2 = (s % strata + u2) / strata;
             const MaterialSample ms = sampleMaterial(m, hit.normal, dir, u1, u2);
             // Smooth normals on a tessellated surface send a few samples under the triangle
             // itself; they are dropped and the rest renormalised, so no energy is lost.
@@ -79,7 +90,8 @@ public:
         Vec3d incident{0.0, 0.0, 0.0};
         Vec3d blocked{0.0, 0.0, 0.0};
     };
-    SurfaceLight surfaceLight(const Vec3d& eye, const Vec3d& dir, double surface, Random& rng) const {
+    SurfaceLight surfaceLight(const Vec3d& eye, const Vec3d& dir, double surface,
+                              Random& rng) const {
         if (!std::isfinite(surface)) return {};
         const Vec3d x = eye + dir * surface;
         // Receivers: surfaces beneath an object (below its centre, +y is down) within 3 radii.
@@ -108,7 +120,8 @@ public:
         SurfaceLight result;
         for (int s = 0; s < k; ++s) {
             double u1 = rng.uniform(), u2 = rng.uniform();
-            if (s < strata * strata) u1 = (s / strata + u1) / strata, u2 = (s % strata + u2) / strata;
+            if (s < strata * strata)
+                u1 = (s / strata + u1) / strata, u2 = (s % strata + u2) / strata;
             const Vec3d d = cosineDirection(n, u1, u2);
             const RayResult light = marchRay(volume_, y, d, options_.march);
             const Vec3d l(light.radiance[0], light.radiance[1], light.radiance[2]);
@@ -147,21 +160,24 @@ InsertedObject placeObject(TriangleMesh mesh, const Material& material, const Ve
 
 void InsertOptions::validate() const {
     if (samples < 1 || samples > 65536) throw InputError("--samples must be in [1, 65536]");
-    if (pixelSamples < 1 || pixelSamples > 16) throw InputError("--pixel-samples must be in [1, 16]");
+    if (pixelSamples < 1 || pixelSamples > 16)
+        throw InputError("--pixel-samples must be in [1, 16]");
     if (maxDepth < 1 || maxDepth > 16) throw InputError("--max-depth must be in [1, 16]");
-    if (envmapHeight < 1 || envmapHeight > 4096) throw InputError("envmap height must be in [1, 4096]");
+    if (envmapHeight < 1 || envmapHeight > 4096)
+        throw InputError("envmap height must be in [1, 4096]");
     if (shadowRays < 1 || shadowRays > 4096) throw InputError("--shadow-rays must be in [1, 4096]");
     march.validate();
 }
 
-ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background, const PinholeCamera& camera,
-                       const std::vector<InsertedObject>& objects, const InsertOptions& options,
-                       std::vector<ObjectVisibility>* visibility) {
+ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background,
+                       const PinholeCamera& camera, const std::vector<InsertedObject>& objects,
+                       const InsertOptions& options, std::vector<ObjectVisibility>* visibility) {
     options.validate();
     camera.validate("insertion camera");
     if (background.width != camera.width || background.height != camera.height)
-        throw InputError("image is " + std::to_string(background.width) + "x" + std::to_string(background.height) +
-                         " but the camera is " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
+        throw InputError("image is " + std::to_string(background.width) + "x" +
+                         std::to_string(background.height) + " but the camera is " +
+                         std::to_string(camera.width) + "x" + std::to_string(camera.height));
     if (objects.empty()) throw InputError("nothing to insert: give at least one object");
     const Inserter inserter(volume, objects, options);
     ImageRGB out(camera.width, camera.height);
@@ -187,8 +203,10 @@ ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background, c
                     }
                     if (!near) continue;
                     Random rng(0x5AD0u);
-                    const double surface = marchRay(volume, camera.position, d, options.march).surfaceDistance;
-                    shadowGrid[std::size_t(gy) * sw + gx] = inserter.surfaceLight(camera.position, d, surface, rng);
+                    const double surface =
+                        marchRay(volume, camera.position, d, options.march).surfaceDistance;
+                    shadowGrid[std::size_t(gy) * sw + gx] =
+                        inserter.surfaceLight(camera.position, d, surface, rng);
                 }
         });
     // Differential rendering: the photo loses albedo * blocked light, with the albedo
@@ -214,37 +232,45 @@ ImageRGB insertObjects(const RenderVolume& volume, const ImageRGB& background, c
             }
         return out;
     };
-    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y != rows.end(); ++y)
-            for (int x = 0; x < camera.width; ++x) {
-                Random rng(mixSeed(0x1A5E27u, uint64_t(y) * camera.width + x));
-                const float* bg = background.at(x, y);
-                const Vec3d photo(bg[0], bg[1], bg[2]);
-                // The real scene's depth along the pixel centre, computed lazily: only pixels
-                // whose rays meet an object need it.
-                double surface = -1;
-                const auto sceneSurface = [&] {
-                    if (surface < 0)
-                        surface = marchRay(volume, camera.position, camera.pixelDirection(x + 0.5, y + 0.5), options.march).surfaceDistance;
-                    return surface;
-                };
-                Vec3d sum(0.0);
-                for (int s = 0; s < n * n; ++s) {
-                    const Vec3d d = camera.pixelDirection(x + (s % n + 0.5) / n, y + (s / n + 0.5) / n);
-                    const ObjectHit hit = inserter.tracer().intersect(camera.position, d, 0.0);
-                    if (hit.hit) raysHit[std::size_t(hit.object)].fetch_add(1, std::memory_order_relaxed);
-                    if (hit.hit && hit.t < sceneSurface()) {
-                        raysVisible[std::size_t(hit.object)].fetch_add(1, std::memory_order_relaxed);
-                        sum += inserter.shade(hit, d, 1, rng);
-                        continue;
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, camera.height), [&](const tbb::blocked_range<int>& rows) {
+            for (int y = rows.begin(); y != rows.end(); ++y)
+                for (int x = 0; x < camera.width; ++x) {
+                    Random rng(mixSeed(0x1A5E27u, uint64_t(y) * camera.width + x));
+                    const float* bg = background.at(x, y);
+                    const Vec3d photo(bg[0], bg[1], bg[2]);
+                    // The real scene's depth along the pixel centre, computed lazily: only pixels
+                    // whose rays meet an object need it.
+                    double surface = -1;
+                    const auto sceneSurface = [&] {
+                        if (surface < 0)
+                            surface =
+                                marchRay(volume, camera.position,
+                                         camera.pixelDirection(x + 0.5, y + 0.5), options.march)
+                                    .surfaceDistance;
+                        return surface;
+                    };
+                    Vec3d sum(0.0);
+                    for (int s = 0; s < n * n; ++s) {
+                        const Vec3d d =
+                            camera.pixelDirection(x + (s % n + 0.5) / n, y + (s / n + 0.5) / n);
+                        const ObjectHit hit = inserter.tracer().intersect(camera.position, d, 0.0);
+                        if (hit.hit)
+                            raysHit[std::size_t(hit.object)].fetch_add(1,
+                                                                       std::memory_order_relaxed);
+                        if (hit.hit && hit.t < sceneSurface()) {
+                            raysVisible[std::size_t(hit.object)].fetch_add(
+                                1, std::memory_order_relaxed);
+                            sum += inserter.shade(hit, d, 1, rng);
+                            continue;
+                        }
+                        sum += shadowed(x, y, photo);
                     }
-                    sum += shadowed(x, y, photo);
+                    sum /= double(n * n);
+                    float* px = out.at(x, y);
+                    for (int c = 0; c < 3; ++c) px[c] = float(sum[c]);
                 }
-                sum /= double(n * n);
-                float* px = out.at(x, y);
-                for (int c = 0; c < 3; ++c) px[c] = float(sum[c]);
-            }
-    });
+        });
     if (visibility) {
         visibility->assign(objects.size(), {});
         for (std::size_t i = 0; i < objects.size(); ++i)

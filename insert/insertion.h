@@ -35,13 +35,13 @@ InsertedObject placeObject(TriangleMesh mesh, const Material& material, const Ve
                            double radius, const Mat3d& rotation = Mat3d::identity());
 
 struct InsertOptions {
-    int samples = 64;          // rays per pixel on glossy or diffuse objects (shared by its primary rays)
-    int pixelSamples = 2;      // primary rays per pixel and axis (anti-aliased edges)
-    int maxDepth = 3;          // object-to-object bounces
-    bool singleEnvmap = false; // light each object by one envmap at its centre instead
-    int envmapHeight = 128;    // of those envmaps (width 2x)
+    int samples = 64;  // rays per pixel on glossy or diffuse objects (shared by its primary rays)
+    int pixelSamples = 2;       // primary rays per pixel and axis (anti-aliased edges)
+    int maxDepth = 3;           // object-to-object bounces
+    bool singleEnvmap = false;  // light each object by one envmap at its centre instead
+    int envmapHeight = 128;     // of those envmaps (width 2x)
     bool shadows = true;
-    int shadowRays = 32;       // per background pixel near an object
+    int shadowRays = 32;  // per background pixel near an object
     MarchOptions march;
 
     void validate() const;  // throws InputError

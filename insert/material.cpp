@@ -24,9 +24,11 @@ double smithG1(double cosTheta, double alpha) {
 Material Material::parse(const std::string& text) {
     Material m;
     const auto colon = text.find(':');
-    const std::string kind = text.substr(0, colon), args = colon == std::string::npos ? "" : text.substr(colon + 1);
+    const std::string kind = text.substr(0, colon),
+                      args = colon == std::string::npos ? "" : text.substr(colon + 1);
     const auto fail = [&]() -> Material {
-        throw InputError("material '" + text + "': expected mirror, glossy:ROUGHNESS (0-1] or diffuse:R,G,B (0-1)");
+        throw InputError("material '" + text +
+                         "': expected mirror, glossy:ROUGHNESS (0-1] or diffuse:R,G,B (0-1)");
     };
     if (kind == "mirror" && args.empty()) {
         m.kind = Kind::Mirror;
@@ -59,7 +61,8 @@ Material Material::parse(const std::string& text) {
     return fail();
 }
 
-MaterialSample sampleMaterial(const Material& m, const Vec3d& n, const Vec3d& incoming, double u1, double u2) {
+MaterialSample sampleMaterial(const Material& m, const Vec3d& n, const Vec3d& incoming, double u1,
+                              double u2) {
     switch (m.kind) {
         case Material::Kind::Mirror:
             return {reflect(incoming, n).unit(), m.albedo};
@@ -74,9 +77,11 @@ MaterialSample sampleMaterial(const Material& m, const Vec3d& n, const Vec3d& in
             tangentFrame(n, t, b);
             const double alpha = m.roughness * m.roughness;
             const double tan2 = alpha * alpha * u1 / std::max(1e-12, 1 - u1);
-            const double cosH = 1 / std::sqrt(1 + tan2), sinH = std::sqrt(std::max(0.0, 1 - cosH * cosH));
+            const double cosH = 1 / std::sqrt(1 + tan2),
+                         sinH = std::sqrt(std::max(0.0, 1 - cosH * cosH));
             const double phi = 2 * M_PI * u2;
-            const Vec3d h = (t * (sinH * std::cos(phi)) + b * (sinH * std::sin(phi)) + n * cosH).unit();
+            const Vec3d h =
+                (t * (sinH * std::cos(phi)) + b * (sinH * std::sin(phi)) + n * cosH).unit();
             const Vec3d v = -incoming;
             const Vec3d l = reflect(incoming, h).unit();
             const double nl = n.dot(l), nv = n.dot(v), vh = v.dot(h), nh = n.dot(h);

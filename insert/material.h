@@ -15,8 +15,8 @@ namespace lh {
 struct Material {
     enum class Kind { Mirror, Glossy, Diffuse };
     Kind kind = Kind::Mirror;
-    double roughness = 0.2;        // glossy only, in (0, 1]
-    Vec3d albedo{1.0, 1.0, 1.0};   // diffuse albedo (linear) or specular tint
+    double roughness = 0.2;       // glossy only, in (0, 1]
+    Vec3d albedo{1.0, 1.0, 1.0};  // diffuse albedo (linear) or specular tint
 
     // "mirror", "glossy:0.3", "diffuse:0.8,0.2,0.2". Throws InputError.
     static Material parse(const std::string& text);
@@ -29,6 +29,7 @@ struct MaterialSample {
 
 // Samples an outgoing direction at a surface with unit normal n (facing the viewer) for a
 // ray arriving along `incoming` (unit, towards the surface). u1, u2 uniform in [0, 1).
-MaterialSample sampleMaterial(const Material& m, const Vec3d& n, const Vec3d& incoming, double u1, double u2);
+MaterialSample sampleMaterial(const Material& m, const Vec3d& n, const Vec3d& incoming, double u1,
+                              double u2);
 
 }  // namespace lh

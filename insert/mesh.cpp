@@ -30,8 +30,8 @@ void requireFiniteVertices(const std::string& path) {
             char* end = nullptr;
             const double value = std::strtod(token.c_str(), &end);
             if (end == token.c_str() || *end != '\0' || !std::isfinite(value))
-                throw FileError("mesh '" + path + "' line " + std::to_string(number) + ": vertex coordinate '" +
-                                token + "' is not a finite number");
+                throw FileError("mesh '" + path + "' line " + std::to_string(number) +
+                                ": vertex coordinate '" + token + "' is not a finite number");
         }
     }
 }
@@ -117,8 +117,10 @@ TriangleMesh cylinder(int around) {
         }
         for (int j = 0; j < around; ++j) {
             const uint32_t a = centre + 1 + j, b = a + 1;
-            if (side) m.indices.insert(m.indices.end(), {centre, a, b});
-            else m.indices.insert(m.indices.end(), {centre, b, a});
+            if (side)
+                m.indices.insert(m.indices.end(), {centre, a, b});
+            else
+                m.indices.insert(m.indices.end(), {centre, b, a});
         }
     }
     return m;
@@ -156,11 +158,17 @@ void TriangleMesh::computeNormals() {
 
 TriangleMesh builtinMesh(const std::string& name) {
     TriangleMesh m;
-    if (name == "sphere") m = uvSphere(96, 48);
-    else if (name == "cube") m = cube();
-    else if (name == "torus") m = torus(1.0, 0.4, 96, 48);
-    else if (name == "cylinder") m = cylinder(96);
-    else throw InputError("unknown built-in object '" + name + "' (sphere, cube, torus, cylinder, or a .obj file)");
+    if (name == "sphere")
+        m = uvSphere(96, 48);
+    else if (name == "cube")
+        m = cube();
+    else if (name == "torus")
+        m = torus(1.0, 0.4, 96, 48);
+    else if (name == "cylinder")
+        m = cylinder(96);
+    else
+        throw InputError("unknown built-in object '" + name +
+                         "' (sphere, cube, torus, cylinder, or a .obj file)");
     m.normalise();
     return m;
 }
@@ -176,7 +184,8 @@ TriangleMesh loadObj(const std::string& path) {
     const auto& attrib = reader.GetAttrib();
     TriangleMesh m;
     for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
-        m.positions.push_back(Vec3d(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]));
+        m.positions.push_back(
+            Vec3d(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]));
     for (const auto& shape : reader.GetShapes())
         for (const auto& index : shape.mesh.indices) {
             if (index.vertex_index < 0 || std::size_t(index.vertex_index) >= m.positions.size())
@@ -193,14 +202,15 @@ TriangleMesh loadObj(const std::string& path) {
 }
 
 TriangleMesh loadMesh(const std::string& nameOrPath) {
-    if (nameOrPath.size() > 4 && nameOrPath.substr(nameOrPath.size() - 4) == ".obj") return loadObj(nameOrPath);
+    if (nameOrPath.size() > 4 && nameOrPath.substr(nameOrPath.size() - 4) == ".obj")
+        return loadObj(nameOrPath);
     return builtinMesh(nameOrPath);
 }
 
 Mat3d rotationFromDegrees(const Vec3d& degrees) {
     const Vec3d r = degrees * (M_PI / 180.0);
-    const double cx = std::cos(r.x()), sx = std::sin(r.x()), cy = std::cos(r.y()), sy = std::sin(r.y()),
-                 cz = std::cos(r.z()), sz = std::sin(r.z());
+    const double cx = std::cos(r.x()), sx = std::sin(r.x()), cy = std::cos(r.y()),
+                 sy = std::sin(r.y()), cz = std::cos(r.z()), sz = std::sin(r.z());
     const Mat3d rx(1.0, 0.0, 0.0, 0.0, cx, -sx, 0.0, sx, cx);
     const Mat3d ry(cy, 0.0, sy, 0.0, 1.0, 0.0, -sy, 0.0, cy);
     const Mat3d rz(cz, -sz, 0.0, sz, cz, 0.0, 0.0, 0.0, 1.0);

@@ -13,8 +13,8 @@ namespace lh {
 
 struct TriangleMesh {
     std::vector<Vec3d> positions;
-    std::vector<Vec3d> normals;      // per vertex, unit (smooth shading)
-    std::vector<uint32_t> indices;   // 3 per triangle
+    std::vector<Vec3d> normals;     // per vertex, unit (smooth shading)
+    std::vector<uint32_t> indices;  // 3 per triangle
 
     std::size_t triangleCount() const { return indices.size() / 3; }
     // Centres the mesh on its bounding box and scales it to a bounding radius of 1.

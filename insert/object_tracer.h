@@ -15,7 +15,7 @@ struct ObjectHit {
     double t = std::numeric_limits<double>::infinity();
     int object = -1;
     Vec3d position{0.0, 0.0, 0.0};
-    Vec3d normal{0.0, 0.0, 0.0};          // shading normal, unit, facing the incoming ray
+    Vec3d normal{0.0, 0.0, 0.0};           // shading normal, unit, facing the incoming ray
     Vec3d geometricNormal{0.0, 0.0, 0.0};  // unit, facing the incoming ray
 };
 

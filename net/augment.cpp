@@ -26,22 +26,27 @@ Augmentation drawAugmentation(Random& rng) {
 ImageRGB jpegRoundTrip(const ImageRGB& linear, int quality) {
     std::vector<std::uint8_t> codes(linear.pixels.size());
     for (std::size_t i = 0; i < codes.size(); ++i)
-        codes[i] = std::uint8_t(std::lround(srgbEncode(std::clamp(linear.pixels[i], 0.f, 1.f)) * 255.0));
+        codes[i] =
+            std::uint8_t(std::lround(srgbEncode(std::clamp(linear.pixels[i], 0.f, 1.f)) * 255.0));
     std::vector<std::uint8_t> file;
     const auto append = [](void* context, void* data, int size) {
         auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-        out->insert(out->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+        out->insert(out->end(), static_cast<std::uint8_t*>(data),
+                    static_cast<std::uint8_t*>(data) + size);
     };
-    if (!stbi_write_jpg_to_func(append, &file, linear.width, linear.height, 3, codes.data(), quality))
+    if (!stbi_write_jpg_to_func(append, &file, linear.width, linear.height, 3, codes.data(),
+                                quality))
         throw Error("JPEG augmentation: could not encode a " + std::to_string(linear.width) + "x" +
                     std::to_string(linear.height) + " image");
     int w = 0, h = 0, channels = 0;
     const std::unique_ptr<std::uint8_t, void (*)(void*)> decoded(
-        stbi_load_from_memory(file.data(), int(file.size()), &w, &h, &channels, 3), stbi_image_free);
+        stbi_load_from_memory(file.data(), int(file.size()), &w, &h, &channels, 3),
+        stbi_image_free);
     if (!decoded || w != linear.width || h != linear.height)
         throw Error("JPEG augmentation: could not decode the image it encoded");
     ImageRGB out(w, h);
-    for (std::size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = srgbDecode(decoded.get()[i] / 255.0f);
+    for (std::size_t i = 0; i < out.pixels.size(); ++i)
+        out.pixels[i] = srgbDecode(decoded.get()[i] / 255.0f);
     return out;
 }
 

@@ -4,8 +4,8 @@
 // The photos are what a camera saved: linear radiance times exposure and per-channel gain,
 // clipped at 1, with Gaussian noise added in sRGB (8-bit) code values, then quantised to 8
 // bits, and for half of the examples saved as JPEG (quality 60-95) and read back, as phones
-// save their photos. Exposure and white balance change the scene's light as a whole, so every HDR target
-// (envmaps, the oracle's colours) is scaled by the same factors, unclipped.
+// save their photos. Exposure and white balance change the scene's light as a whole, so every HDR
+// target (envmaps, the oracle's colours) is scaled by the same factors, unclipped.
 #pragma once
 
 #include "core/random.h"

@@ -69,14 +69,15 @@ NetConfig NetConfig::byName(const std::string& name) {
     if (name == "standard") return standard();
     if (name == "small") return small();
     if (name == "paper") return paper();
-    throw InputError("unknown configuration '" + name + "' (expected 'standard', 'small' or 'paper')");
+    throw InputError("unknown configuration '" + name +
+                     "' (expected 'standard', 'small' or 'paper')");
 }
 
 void NetConfig::validate() const {
     const auto multipleOf16 = [](int v, const char* what) {
         if (v < 16 || v % 16 != 0 || v > 4096)
-            throw InputError(std::string("network ") + what + " must be a multiple of 16 in [16, 4096], got " +
-                             std::to_string(v));
+            throw InputError(std::string("network ") + what +
+                             " must be a multiple of 16 in [16, 4096], got " + std::to_string(v));
     };
     multipleOf16(width, "input width");
     multipleOf16(height, "input height");
@@ -86,13 +87,18 @@ void NetConfig::validate() const {
     if (baseWidth < 1 || baseWidth > 64) throw InputError("network base width must be in [1, 64]");
     if (trainEnvWidth != 2 * trainEnvHeight || trainEnvHeight < 1)
         throw InputError("training envmap size must be W x H with W = 2 H");
-    if (samplesPerLevel < 4 || samplesPerLevel > 1024) throw InputError("samples per level must be in [4, 1024]");
-    if (mpiNetwork != "2d" && mpiNetwork != "3d") throw InputError("MPI network must be '2d' or '3d', got '" + mpiNetwork + "'");
+    if (samplesPerLevel < 4 || samplesPerLevel > 1024)
+        throw InputError("samples per level must be in [4, 1024]");
+    if (mpiNetwork != "2d" && mpiNetwork != "3d")
+        throw InputError("MPI network must be '2d' or '3d', got '" + mpiNetwork + "'");
     if (mpiWidth < 4 || mpiWidth > 256) throw InputError("MPI network width must be in [4, 256]");
     if (colourAnchor && !hdr) throw InputError("the colour anchor needs HDR colours");
-    if (completionScale != 1 && completionScale != 2) throw InputError("completion scale must be 1 or 2");
+    if (completionScale != 1 && completionScale != 2)
+        throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
-        throw InputError("the completion networks' resolution (cube resolution / completion scale) must be a multiple of 16");
+        throw InputError(
+            "the completion networks' resolution (cube resolution / completion scale) must be a "
+            "multiple of 16");
 }
 
 std::string NetConfig::toJson() const {

@@ -13,10 +13,10 @@ namespace lh::net {
 
 struct NetConfig {
     std::string name = "small";
-    int width = 128;   // network input width, pixels (multiple of 16: four stride-2 stages)
-    int height = 96;   // network input height, pixels (multiple of 16)
-    int planes = 16;   // MPI / plane-sweep planes D (multiple of 16)
-    int levels = 5;    // nested cubes L
+    int width = 128;      // network input width, pixels (multiple of 16: four stride-2 stages)
+    int height = 96;      // network input height, pixels (multiple of 16)
+    int planes = 16;      // MPI / plane-sweep planes D (multiple of 16)
+    int levels = 5;       // nested cubes L
     int resolution = 32;  // voxels per cube side R (multiple of 16)
     int baseWidth = 8;    // channels of the first encoder stage (the paper's 8)
     // Training renderer: envmap size and samples per level along each ray.

@@ -42,7 +42,8 @@ void writeCurvePlot(const std::string& path, const std::string& title, const std
         if (p < series.size()) {
             const CurveSeries& s = series[p];
             curve.name = s.name;
-            for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) curve.points.push_back({s.x[i], s.y[i], ""});
+            for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
+                curve.points.push_back({s.x[i], s.y[i], ""});
         }
         panels.push_back(plotImage(xAxis, yAxis, {curve}, {}, frame));
     }
@@ -51,7 +52,8 @@ void writeCurvePlot(const std::string& path, const std::string& title, const std
     ImageRGB page(panels.front().width, height);
     int top = 0;
     for (const ImageRGB& panel : panels) {
-        std::copy(panel.pixels.begin(), panel.pixels.end(), page.pixels.begin() + std::size_t(top) * page.width * 3);
+        std::copy(panel.pixels.begin(), panel.pixels.end(),
+                  page.pixels.begin() + std::size_t(top) * page.width * 3);
         top += panel.height;
     }
     writePng(page, path);  // image_io writes through a temporary name

@@ -13,8 +13,8 @@ namespace {
 
 constexpr int kCandidates = 64;
 constexpr double kMinDepth = 0.2, kMaxDepth = 100.0;  // scene units
-constexpr int kWindowRadius = 3;                       // 7x7 aggregation window
-constexpr int kMaxWidth = 192;                         // the sweep runs on a downsized pair
+constexpr int kWindowRadius = 3;                      // 7x7 aggregation window
+constexpr int kMaxWidth = 192;                        // the sweep runs on a downsized pair
 
 float grey(const ImageRGB& im, int x, int y) {
     const float* p = im.at(x, y);
@@ -24,7 +24,8 @@ float grey(const ImageRGB& im, int x, int y) {
 // Bilinear grey value at continuous pixel coordinates; NaN outside.
 float sampleGrey(const ImageRGB& im, double px, double py) {
     const double fx = px - 0.5, fy = py - 0.5;
-    if (fx < 0 || fy < 0 || fx > im.width - 1 || fy > im.height - 1) return std::numeric_limits<float>::quiet_NaN();
+    if (fx < 0 || fy < 0 || fx > im.width - 1 || fy > im.height - 1)
+        return std::numeric_limits<float>::quiet_NaN();
     const int x0 = std::min(int(fx), im.width - 2 < 0 ? 0 : im.width - 2);
     const int y0 = std::min(int(fy), im.height - 2 < 0 ? 0 : im.height - 2);
     const int x1 = std::min(x0 + 1, im.width - 1), y1 = std::min(y0 + 1, im.height - 1);
@@ -38,8 +39,9 @@ std::vector<float> boxFilter(const std::vector<float>& v, int w, int h) {
     std::vector<double> sat(size_t(w + 1) * (h + 1), 0.0);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            sat[size_t(y + 1) * (w + 1) + x + 1] = v[size_t(y) * w + x] + sat[size_t(y) * (w + 1) + x + 1] +
-                                                   sat[size_t(y + 1) * (w + 1) + x] - sat[size_t(y) * (w + 1) + x];
+            sat[size_t(y + 1) * (w + 1) + x + 1] =
+                v[size_t(y) * w + x] + sat[size_t(y) * (w + 1) + x + 1] +
+                sat[size_t(y + 1) * (w + 1) + x] - sat[size_t(y) * (w + 1) + x];
     std::vector<float> out(v.size());
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -59,8 +61,8 @@ double percentile(std::vector<double> v, double q) {
 
 }  // namespace
 
-DepthRange estimateDepthRange(const ImageRGB& refFull, const ImageRGB& srcFull, const PinholeCamera& refCamFull,
-                              const PinholeCamera& srcCamFull) {
+DepthRange estimateDepthRange(const ImageRGB& refFull, const ImageRGB& srcFull,
+                              const PinholeCamera& refCamFull, const PinholeCamera& srcCamFull) {
     const int w = std::min(refFull.width, kMaxWidth);
     const int h = std::max(1, int(std::lround(double(refFull.height) * w / refFull.width)));
     const int ws = std::min(srcFull.width, kMaxWidth);
@@ -86,12 +88,14 @@ DepthRange estimateDepthRange(const ImageRGB& refFull, const ImageRGB& srcFull, 
     std::vector<int> validCount(size_t(w) * h, 0), bestIndex(size_t(w) * h, -1);
     std::vector<double> depths(kCandidates);
     for (int c = 0; c < kCandidates; ++c) {
-        const double disparity = 1.0 / kMaxDepth + (1.0 / kMinDepth - 1.0 / kMaxDepth) * c / (kCandidates - 1);
+        const double disparity =
+            1.0 / kMaxDepth + (1.0 / kMinDepth - 1.0 / kMaxDepth) * c / (kCandidates - 1);
         depths[size_t(c)] = 1.0 / disparity;
         std::vector<float> cost(size_t(w) * h, 0.f), inside(size_t(w) * h, 0.f);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
-                const Vec3d camPoint = Vec3d((x + 0.5 - refCam.cx) / refCam.fx, (y + 0.5 - refCam.cy) / refCam.fy, 1.0) *
+                const Vec3d camPoint = Vec3d((x + 0.5 - refCam.cx) / refCam.fx,
+                                             (y + 0.5 - refCam.cy) / refCam.fy, 1.0) *
                                        depths[size_t(c)];
                 const Vec3d world = refCam.rotation * camPoint + refCam.position;
                 const Vec3d inSrc = srcCam.worldToCamera(world);
@@ -102,7 +106,8 @@ DepthRange estimateDepthRange(const ImageRGB& refFull, const ImageRGB& srcFull, 
                 cost[size_t(y) * w + x] = std::min(1.f, std::abs(value - grey(ref, x, y)));
                 inside[size_t(y) * w + x] = 1.f;
             }
-        const std::vector<float> aggregated = boxFilter(cost, w, h), coverage = boxFilter(inside, w, h);
+        const std::vector<float> aggregated = boxFilter(cost, w, h),
+                                 coverage = boxFilter(inside, w, h);
         for (size_t i = 0; i < aggregated.size(); ++i) {
             if (coverage[i] < 0.999f) continue;  // the window leaves the source image
             ++validCount[i];

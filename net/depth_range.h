@@ -24,7 +24,7 @@ struct DepthRange {
 // Default range when the pair cannot tell (textureless or saturated images): a room.
 constexpr double kFallbackNear = 0.5, kFallbackFar = 10.0;
 
-DepthRange estimateDepthRange(const ImageRGB& ref, const ImageRGB& src, const PinholeCamera& refCamera,
-                              const PinholeCamera& srcCamera);
+DepthRange estimateDepthRange(const ImageRGB& ref, const ImageRGB& src,
+                              const PinholeCamera& refCamera, const PinholeCamera& srcCamera);
 
 }  // namespace lh::net

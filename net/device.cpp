@@ -14,7 +14,8 @@ torch::Device selectDevice(const std::string& name) {
     if (name == "cpu") return torch::Device(torch::kCPU);
     if (name.rfind("cuda", 0) == 0) {
         if (!torch::cuda::is_available())
-            throw InputError("--device " + name + ": this libtorch has no CUDA or no GPU is visible; use --device cpu");
+            throw InputError("--device " + name +
+                             ": this libtorch has no CUDA or no GPU is visible; use --device cpu");
         try {
             return torch::Device(name);
         } catch (const c10::Error&) {

@@ -6,8 +6,8 @@
 
 #include "core/errors.h"
 
-#include <torch/csrc/distributed/c10d/ProcessGroupGloo.hpp>
 #include <torch/csrc/distributed/c10d/PrefixStore.hpp>
+#include <torch/csrc/distributed/c10d/ProcessGroupGloo.hpp>
 #include <torch/csrc/distributed/c10d/TCPStore.hpp>
 #ifdef USE_C10D_NCCL
 #include <torch/csrc/distributed/c10d/ProcessGroupNCCL.hpp>
@@ -30,7 +30,8 @@ bool parseInt(const char* text, long long& out) {
 
 int intFrom(const char* text, const std::string& name) {
     long long v = 0;
-    if (!parseInt(text, v) || v < 0 || v > 1000000) throw InputError(name + " must be a non-negative integer, got '" + text + "'");
+    if (!parseInt(text, v) || v < 0 || v > 1000000)
+        throw InputError(name + " must be a non-negative integer, got '" + text + "'");
     return int(v);
 }
 
@@ -50,23 +51,36 @@ DistributedOptions resolveDistributed(const DistributedFlags& f,
         throw InputError("--dist-backend must be gloo or nccl, got '" + o.backend + "'");
 #ifndef USE_C10D_NCCL
     if (o.backend == "nccl")
-        throw InputError("--dist-backend nccl needs a build against a CUDA libtorch with -DLIGHTHOUSE_WITH_NCCL=ON; "
-                         "this one has Gloo only");
+        throw InputError(
+            "--dist-backend nccl needs a build against a CUDA libtorch with "
+            "-DLIGHTHOUSE_WITH_NCCL=ON; "
+            "this one has Gloo only");
 #endif
     // Slurm sets SLURM_PROCID and SLURM_NTASKS in a batch script too; only a task that srun
     // started (SLURM_STEP_ID) is one of several ranks.
     const bool underSrun = env("SLURM_STEP_ID") && env("SLURM_PROCID");
-    if (f.worldSize >= 0) o.worldSize = f.worldSize;
-    else if (env("WORLD_SIZE")) o.worldSize = intFrom(env("WORLD_SIZE"), "WORLD_SIZE");
-    else if (underSrun && env("SLURM_STEP_NUM_TASKS")) o.worldSize = intFrom(env("SLURM_STEP_NUM_TASKS"), "SLURM_STEP_NUM_TASKS");
-    else if (underSrun && env("SLURM_NTASKS")) o.worldSize = intFrom(env("SLURM_NTASKS"), "SLURM_NTASKS");
-    if (o.worldSize < 1 || o.worldSize > 4096) throw InputError("--world-size must be in [1, 4096], got " + std::to_string(o.worldSize));
-    if (f.rank >= 0) o.rank = f.rank;
-    else if (env("RANK")) o.rank = intFrom(env("RANK"), "RANK");
-    else if (underSrun) o.rank = intFrom(env("SLURM_PROCID"), "SLURM_PROCID");
-    else if (o.worldSize > 1) throw InputError("world size " + std::to_string(o.worldSize) + " but no rank: give --rank R or set RANK");
+    if (f.worldSize >= 0)
+        o.worldSize = f.worldSize;
+    else if (env("WORLD_SIZE"))
+        o.worldSize = intFrom(env("WORLD_SIZE"), "WORLD_SIZE");
+    else if (underSrun && env("SLURM_STEP_NUM_TASKS"))
+        o.worldSize = intFrom(env("SLURM_STEP_NUM_TASKS"), "SLURM_STEP_NUM_TASKS");
+    else if (underSrun && env("SLURM_NTASKS"))
+        o.worldSize = intFrom(env("SLURM_NTASKS"), "SLURM_NTASKS");
+    if (o.worldSize < 1 || o.worldSize > 4096)
+        throw InputError("--world-size must be in [1, 4096], got " + std::to_string(o.worldSize));
+    if (f.rank >= 0)
+        o.rank = f.rank;
+    else if (env("RANK"))
+        o.rank = intFrom(env("RANK"), "RANK");
+    else if (underSrun)
+        o.rank = intFrom(env("SLURM_PROCID"), "SLURM_PROCID");
+    else if (o.worldSize > 1)
+        throw InputError("world size " + std::to_string(o.worldSize) +
+                         " but no rank: give --rank R or set RANK");
     if (o.rank < 0 || o.rank >= o.worldSize)
-        throw InputError("--rank must be in [0, " + std::to_string(o.worldSize) + "), got " + std::to_string(o.rank));
+        throw InputError("--rank must be in [0, " + std::to_string(o.worldSize) + "), got " +
+                         std::to_string(o.rank));
     if (!o.active()) return o;
 
     std::string port;
@@ -86,7 +100,8 @@ DistributedOptions resolveDistributed(const DistributedFlags& f,
         port = env("MASTER_PORT") ? env("MASTER_PORT") : std::to_string(20000 + job % 20000);
     } else {
         throw InputError("world size " + std::to_string(o.worldSize) +
-                         " needs a rendezvous: give --master HOST:PORT (rank 0's host) or set MASTER_ADDR and MASTER_PORT");
+                         " needs a rendezvous: give --master HOST:PORT (rank 0's host) or set "
+                         "MASTER_ADDR and MASTER_PORT");
     }
     long long p = 0;
     if (!parseInt(port.c_str(), p) || p < 1 || p > 65535)
@@ -113,8 +128,9 @@ struct Communicator::Impl {
             const auto nl = cause.find('\n');
             if (nl != std::string::npos) cause.resize(nl);
             throw Error("distributed training, rank " + std::to_string(options.rank) + " of " +
-                        std::to_string(options.worldSize) + ": " + what + " failed (another rank died, or did not answer " +
-                        "within " + std::to_string(int(options.timeoutSeconds)) + " s): " + cause);
+                        std::to_string(options.worldSize) + ": " + what +
+                        " failed (another rank died, or did not answer " + "within " +
+                        std::to_string(int(options.timeoutSeconds)) + " s): " + cause);
         }
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
@@ -136,7 +152,8 @@ Communicator::Communicator(const DistributedOptions& o) : impl_(std::make_unique
         if (o.backend == "nccl") {
             auto no = c10d::ProcessGroupNCCL::Options::create();
             no->timeout = timeout;
-            impl_->group = c10::make_intrusive<c10d::ProcessGroupNCCL>(prefixed, o.rank, o.worldSize, no);
+            impl_->group =
+                c10::make_intrusive<c10d::ProcessGroupNCCL>(prefixed, o.rank, o.worldSize, no);
         }
 #endif
         if (o.backend == "gloo") {
@@ -144,17 +161,20 @@ Communicator::Communicator(const DistributedOptions& o) : impl_(std::make_unique
             // Gloo's device binds to the address this host resolves to; on one machine (or a
             // master given as localhost) the loopback interface.
             const bool local = o.masterAddress == "127.0.0.1" || o.masterAddress == "localhost";
-            go->devices.push_back(local ? c10d::ProcessGroupGloo::createDeviceForHostname("127.0.0.1")
-                                        : c10d::ProcessGroupGloo::createDefaultDevice());
+            go->devices.push_back(local
+                                      ? c10d::ProcessGroupGloo::createDeviceForHostname("127.0.0.1")
+                                      : c10d::ProcessGroupGloo::createDefaultDevice());
             go->threads = 1;
-            impl_->group = c10::make_intrusive<c10d::ProcessGroupGloo>(prefixed, o.rank, o.worldSize, go);
+            impl_->group =
+                c10::make_intrusive<c10d::ProcessGroupGloo>(prefixed, o.rank, o.worldSize, go);
         }
     } catch (const std::exception& e) {
         std::string cause = e.what();
         const auto nl = cause.find('\n');
         if (nl != std::string::npos) cause.resize(nl);
-        throw Error("distributed training, rank " + std::to_string(o.rank) + " of " + std::to_string(o.worldSize) +
-                    ": no rendezvous at " + o.masterAddress + ":" + std::to_string(o.masterPort) + " within " +
+        throw Error("distributed training, rank " + std::to_string(o.rank) + " of " +
+                    std::to_string(o.worldSize) + ": no rendezvous at " + o.masterAddress + ":" +
+                    std::to_string(o.masterPort) + " within " +
                     std::to_string(int(o.timeoutSeconds)) + " s (" + cause + ")");
     }
 }
@@ -184,7 +204,8 @@ void Communicator::allReduceGradients(const std::vector<at::Tensor>& parameters,
     if (parameters.empty()) return;
     std::vector<at::Tensor> pieces;
     for (const auto& p : parameters)
-        pieces.push_back(p.grad().defined() ? p.grad().reshape({-1}) : torch::zeros({p.numel()}, p.options()));
+        pieces.push_back(p.grad().defined() ? p.grad().reshape({-1})
+                                            : torch::zeros({p.numel()}, p.options()));
     std::vector<at::Tensor> buffer = {torch::cat(pieces)};
     impl_->bytes += std::size_t(buffer[0].numel()) * buffer[0].element_size();
     impl_->run(what, [&] { return impl_->group->allreduce(buffer); });
@@ -192,8 +213,10 @@ void Communicator::allReduceGradients(const std::vector<at::Tensor>& parameters,
     for (auto p : parameters) {
         const at::Tensor slice = buffer[0].narrow(0, offset, p.numel()).view_as(p);
         offset += p.numel();
-        if (p.grad().defined()) p.mutable_grad().copy_(slice);
-        else if (p.numel() > 0 && slice.abs().max().item<double>() != 0) p.mutable_grad() = slice.clone();
+        if (p.grad().defined())
+            p.mutable_grad().copy_(slice);
+        else if (p.numel() > 0 && slice.abs().max().item<double>() != 0)
+            p.mutable_grad() = slice.clone();
     }
 }
 
@@ -206,7 +229,8 @@ void Communicator::broadcastFromRankZero(std::vector<at::Tensor>& tensors, const
 
 long long Communicator::broadcastValue(long long value, const char* what) {
     std::vector<at::Tensor> one = {
-        torch::tensor({int64_t(value)}, torch::kInt64).to(impl_->options.backend == "nccl" ? torch::kCUDA : torch::kCPU)};
+        torch::tensor({int64_t(value)}, torch::kInt64)
+            .to(impl_->options.backend == "nccl" ? torch::kCUDA : torch::kCPU)};
     impl_->run(what, [&] { return impl_->group->broadcast(one); });
     return one[0].cpu().item<int64_t>();
 }

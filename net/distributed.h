@@ -70,8 +70,8 @@ public:
     // Rank 0's value of `value` on every rank.
     long long broadcastValue(long long value, const char* what);
 
-    double communicationSeconds() const;   // spent in collectives so far
-    std::size_t bytesReduced() const;      // payload of allReduceSum calls so far
+    double communicationSeconds() const;  // spent in collectives so far
+    std::size_t bytesReduced() const;     // payload of allReduceSum calls so far
 
 private:
     struct Impl;

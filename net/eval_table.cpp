@@ -44,7 +44,8 @@ struct CsvRow {
 CsvRow parseCsvRow(const std::string& line, const std::string& where) {
     CsvRow row;
     const auto bad = [&] { return FileError("'" + where + "': malformed row '" + line + "'"); };
-    const std::size_t c1 = line.find(','), c2 = c1 == std::string::npos ? c1 : line.find(',', c1 + 1);
+    const std::size_t c1 = line.find(','),
+                      c2 = c1 == std::string::npos ? c1 : line.find(',', c1 + 1);
     if (c2 == std::string::npos || line.size() < c2 + 2 || line[c2 + 1] != '"') throw bad();
     const std::size_t q = line.find('"', c2 + 2);
     if (q == std::string::npos) throw bad();
@@ -66,8 +67,8 @@ CsvRow parseCsvRow(const std::string& line, const std::string& where) {
 }  // namespace
 
 std::string evalCsvHeader() {
-    return "example,envmap,method,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,"
-           "log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error\n";
+    return "example,envmap,method,psnr_all_db,angular_all_deg,psnr_observed_db,"
+           "angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error\n";
 }
 
 std::string evalCsvRow(const std::string& example, std::size_t envmap, const std::string& method,
@@ -90,18 +91,20 @@ void addScores(MethodScores& s, const MetricValues& v) {
     s.irradianceError.push_back(v[6]);
 }
 
-std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::size_t scenes, const std::string& data,
-                              const std::string& configName) {
+std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::size_t scenes,
+                              const std::string& data, const std::string& configName) {
     std::ostringstream md;
-    md << "| method | PSNR all (dB) | angular all (deg) | PSNR observed (dB) | angular observed (deg) "
+    md << "| method | PSNR all (dB) | angular all (deg) | PSNR observed (dB) | angular observed "
+          "(deg) "
           "| log-lum RMSE all | log-lum RMSE observed | irradiance rel. error |\n"
        << "|---|---|---|---|---|---|---|---|\n";
     for (const auto& m : methods)
-        md << "| " << m.name << " | " << cell(m.psnrAll, 2) << " | " << cell(m.angularAll, 2) << " | "
-           << cell(m.psnrObserved, 2) << " | " << cell(m.angularObserved, 2) << " | "
+        md << "| " << m.name << " | " << cell(m.psnrAll, 2) << " | " << cell(m.angularAll, 2)
+           << " | " << cell(m.psnrObserved, 2) << " | " << cell(m.angularObserved, 2) << " | "
            << cell(m.logLuminanceAll, 3) << " | " << cell(m.logLuminanceObserved, 3) << " | "
            << cell(m.irradianceError, 3) << " |\n";
-    md << "\n" << (methods.empty() ? 0 : methods[0].psnrAll.size()) << " envmaps (" << scenes
+    md << "\n"
+       << (methods.empty() ? 0 : methods[0].psnrAll.size()) << " envmaps (" << scenes
        << " scenes) of `" << data << "`, model config `" << configName << "`; mean +- std. "
        << "Log-lum RMSE: of ln(1 + luminance); irradiance rel. error: |E_pred - E_gt| / E_gt at "
        << "the six axis normals (docs/metrics.md).\n";
@@ -121,7 +124,8 @@ ImageRGB stackSheetStrips(const std::vector<ImageRGB>& strips) {
     std::fill(sheet.pixels.begin(), sheet.pixels.end(), 0.02f);  // contactSheet's border
     for (std::size_t r = 0; r < strips.size(); ++r) {
         const ImageRGB& s = strips[r];
-        if (s.height != pitch + kSheetGap) throw FileError("contact sheet strip of the wrong height");
+        if (s.height != pitch + kSheetGap)
+            throw FileError("contact sheet strip of the wrong height");
         for (int y = 0; y < s.height; ++y)
             for (int x = 0; x < s.width; ++x)
                 std::copy(s.at(x, y), s.at(x, y) + 3, sheet.at(x, int(r) * pitch + y));
@@ -132,7 +136,8 @@ ImageRGB stackSheetStrips(const std::vector<ImageRGB>& strips) {
 std::string mergeEvalShards(const std::string& dir) {
     const fs::path table = fs::path(dir) / "table.md";
     if (fs::exists(table))
-        throw FileError("'" + dir + "' is merged already (it holds table.md); remove table.md to merge again");
+        throw FileError("'" + dir +
+                        "' is merged already (it holds table.md); remove table.md to merge again");
     const std::vector<nlohmann::json> records = readShardSet(dir, "eval", {"eval"});
     const nlohmann::json& header = records.front()["eval"];
     const std::size_t scenes = header.value("scenes", std::size_t(0));
@@ -145,31 +150,36 @@ std::string mergeEvalShards(const std::string& dir) {
         const std::string csvName = r.value("csv", "");
         const fs::path csvPath = fs::path(dir) / csvName;
         std::ifstream in(csvPath);
-        if (csvName.empty() || !in) throw FileError("cannot read the shard's metrics '" + csvPath.string() + "'");
+        if (csvName.empty() || !in)
+            throw FileError("cannot read the shard's metrics '" + csvPath.string() + "'");
         std::map<std::string, std::size_t> sceneOf;
         for (const nlohmann::json& e : r["examples"]) {
             const std::size_t index = e.value("index", scenes);
             if (index >= scenes || seen[index])
-                throw FileError("shard records in '" + dir + "' list scene " + e.value("id", "?") + " out of place");
+                throw FileError("shard records in '" + dir + "' list scene " + e.value("id", "?") +
+                                " out of place");
             seen[index] = true;
             sceneOf[e.value("id", "")] = index;
         }
         std::string line;
         std::getline(in, line);
-        if (line + "\n" != evalCsvHeader()) throw FileError("'" + csvPath.string() + "' is not an eval shard's CSV");
+        if (line + "\n" != evalCsvHeader())
+            throw FileError("'" + csvPath.string() + "' is not an eval shard's CSV");
         while (std::getline(in, line)) {
             if (line.empty()) continue;
             CsvRow row = parseCsvRow(line, csvPath.string());
             const auto it = sceneOf.find(row.example);
             if (it == sceneOf.end())
-                throw FileError("'" + csvPath.string() + "' scores example '" + row.example + "' its record lacks");
+                throw FileError("'" + csvPath.string() + "' scores example '" + row.example +
+                                "' its record lacks");
             rowsByScene[it->second].push_back(std::move(row));
         }
         for (const nlohmann::json& s : r["sheet_rows"])
             strips.push_back({s.value("scene", scenes), fs::path(dir) / s.value("file", "")});
     }
     for (std::size_t s = 0; s < scenes; ++s)
-        if (!seen[s]) throw FileError("shard records in '" + dir + "' lack scene " + std::to_string(s));
+        if (!seen[s])
+            throw FileError("shard records in '" + dir + "' lack scene " + std::to_string(s));
 
     std::vector<MethodScores> methods;
     for (const auto& name : header["methods"]) {
@@ -182,7 +192,9 @@ std::string mergeEvalShards(const std::string& dir) {
         for (const CsvRow& row : rows) {
             std::size_t m = 0;
             while (m < methods.size() && methods[m].name != row.method) ++m;
-            if (m == methods.size()) throw FileError("eval shard in '" + dir + "' scores unknown method '" + row.method + "'");
+            if (m == methods.size())
+                throw FileError("eval shard in '" + dir + "' scores unknown method '" + row.method +
+                                "'");
             addScores(methods[m], row.values);
             csv << evalCsvRow(row.example, row.envmap, row.method, row.values, false);
         }

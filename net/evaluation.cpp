@@ -39,8 +39,8 @@ constexpr float kGreyFill = 0.2140411f;
 
 // Envmap at `position` with whatever the volume leaves unseen (its transmittance) filled with
 // `background`.
-ImageRGB renderWithBackground(const RenderVolume& volume, const Vec3d& position, int width, int height,
-                              const float background[3]) {
+ImageRGB renderWithBackground(const RenderVolume& volume, const Vec3d& position, int width,
+                              int height, const float background[3]) {
     EnvmapOptions options;
     options.width = width;
     options.height = height;
@@ -60,7 +60,8 @@ void meanColour(const ImageRGB& image, float out[3]) {
 bool hasSceneFiles(const std::vector<std::string>& dirs, std::ostream& progress) {
     for (const std::string& dir : dirs)
         if (!fs::is_regular_file(fs::path(dir) / dataset::kScene)) {
-            progress << "eval: no oracle row: '" << dir << "' has no scene.json (the scene's geometry and "
+            progress << "eval: no oracle row: '" << dir
+                     << "' has no scene.json (the scene's geometry and "
                      << "light the oracle is baked from); the other rows are computed as usual\n";
             return false;
         }
@@ -115,16 +116,18 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         meanColour(ex.ref, observedMean);
         const float grey[3] = {kGreyFill, kGreyFill, kGreyFill};
         const auto& firstGt = ex.envmaps.front();
-        const ImageRGB global = renderWithBackground(mpiOnly, ex.cameras.ref.position, firstGt.width,
-                                                     firstGt.height, observedMean);
+        const ImageRGB global = renderWithBackground(mpiOnly, ex.cameras.ref.position,
+                                                     firstGt.width, firstGt.height, observedMean);
         std::unique_ptr<RenderVolume> oracle;
         if (withOracle) {
             synth::BakeOptions bake;
-            const synth::Scene scene = synth::loadScene((fs::path(dirs[s]) / dataset::kScene).string(), &bake);
+            const synth::Scene scene =
+                synth::loadScene((fs::path(dirs[s]) / dataset::kScene).string(), &bake);
             for (const auto& w : scene.windows) panoramas->get(w.panorama);
             const synth::RayTracer tracer(scene);
             const synth::RadianceField field(scene, tracer, *panoramas, bake);
-            const VolumeLayout layout = VolumeLayout::fromFarDepth(*ex.cameras.far, config.levels, config.resolution);
+            const VolumeLayout layout =
+                VolumeLayout::fromFarDepth(*ex.cameras.far, config.levels, config.resolution);
             oracle = std::make_unique<RenderVolume>(synth::oracleVolume(scene, field, layout));
         }
 
@@ -134,9 +137,10 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
             EnvmapOptions options;
             options.width = gt.width;
             options.height = gt.height;
-            std::vector<ImageRGB> predictions = {renderEnvmap(ours, position, options),
-                                                 renderWithBackground(mpiOnly, position, gt.width, gt.height, grey),
-                                                 resizeImage(global, gt.width, gt.height)};
+            std::vector<ImageRGB> predictions = {
+                renderEnvmap(ours, position, options),
+                renderWithBackground(mpiOnly, position, gt.width, gt.height, grey),
+                resizeImage(global, gt.width, gt.height)};
             if (oracle) predictions.push_back(renderEnvmap(*oracle, position, options));
             const std::string example = fs::path(dirs[s]).filename().string();
             for (size_t m = 0; m < predictions.size(); ++m) {
@@ -157,9 +161,10 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
             }
         }
         shardExamples.push_back({{"index", s}, {"id", fs::path(dirs[s]).filename().string()}});
-        progress << "eval: " << ++done << "/" << owned << " scenes  (ours " << std::fixed << std::setprecision(2)
-                 << meanStd(report.methods[0].psnrAll).mean << " dB so far, predict " << prediction.seconds << " s)"
-                 << std::defaultfloat << std::endl;
+        progress << "eval: " << ++done << "/" << owned << " scenes  (ours " << std::fixed
+                 << std::setprecision(2) << meanStd(report.methods[0].psnrAll).mean
+                 << " dB so far, predict " << prediction.seconds << " s)" << std::defaultfloat
+                 << std::endl;
     }
 
     report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
@@ -178,21 +183,33 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         std::vector<std::string> methodNames;
         for (const auto& m : report.methods) methodNames.push_back(m.name);
         const nlohmann::json record = {
-            {"kind", "eval"}, {"shard", o.shard.index}, {"shards", o.shard.count},
-            {"eval", {{"data", o.data}, {"model", o.model}, {"config", config.name}, {"scenes", dirs.size()},
-                      {"max_scenes", o.maxScenes}, {"methods", methodNames}, {"prune_alpha", o.pruneAlpha}}},
-            {"csv", "metrics." + tag + ".csv"}, {"sheet_rows", strips}, {"examples", shardExamples},
-            {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+            {"kind", "eval"},
+            {"shard", o.shard.index},
+            {"shards", o.shard.count},
+            {"eval",
+             {{"data", o.data},
+              {"model", o.model},
+              {"config", config.name},
+              {"scenes", dirs.size()},
+              {"max_scenes", o.maxScenes},
+              {"methods", methodNames},
+              {"prune_alpha", o.pruneAlpha}}},
+            {"csv", "metrics." + tag + ".csv"},
+            {"sheet_rows", strips},
+            {"examples", shardExamples},
+            {"seconds",
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
         writeTextFile((fs::path(o.out) / ("metrics." + tag + ".csv")).string(), csv.str());
         writeTextFile((fs::path(o.out) / o.shard.recordName()).string(), record.dump(1));
-        progress << "eval: shard " << o.shard.index << " of " << o.shard.count << " -> " << o.out << "/"
-                 << o.shard.recordName() << "; `lighthouse merge " << o.out
+        progress << "eval: shard " << o.shard.index << " of " << o.shard.count << " -> " << o.out
+                 << "/" << o.shard.recordName() << "; `lighthouse merge " << o.out
                  << "` writes table.md once every shard is done\n";
         return report;
     }
     writeTextFile((fs::path(o.out) / "table.md").string(), report.markdown);
     writeTextFile((fs::path(o.out) / "metrics.csv").string(), csv.str());
-    writePng(contactSheet(sheetRows, kEvalSheetTileHeight), (fs::path(o.out) / "contact_sheet.png").string());
+    writePng(contactSheet(sheetRows, kEvalSheetTileHeight),
+             (fs::path(o.out) / "contact_sheet.png").string());
     progress << "eval: columns of contact_sheet.png: ground truth | ours | MPI only | global envmap"
              << (withOracle ? " | oracle" : "") << "\n";
     return report;

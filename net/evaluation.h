@@ -25,15 +25,15 @@
 namespace lh::net {
 
 struct EvalOptions {
-    std::string data;        // test split (lighthouse synth --split test)
-    std::string model;       // empty: the bundled model
+    std::string data;          // test split (lighthouse synth --split test)
+    std::string model;         // empty: the bundled model
     std::string out = "eval";  // directory: table.md, metrics.csv, contact_sheet.png
-    int maxScenes = 0;       // 0: all
+    int maxScenes = 0;         // 0: all
     bool oracle = true;
-    std::string hdriDir;     // panoramas for the oracle's windows
+    std::string hdriDir;  // panoramas for the oracle's windows
     std::string device = "cpu";
     int threads = 0;
-    float pruneAlpha = -1;   // predict's --prune-alpha; negative: its default
+    float pruneAlpha = -1;  // predict's --prune-alpha; negative: its default
     // With shard.active: only scene i with shard.owns(i), into out/metrics.shard-K-of-N.csv,
     // out/sheet.shard-K-of-N/ and out/shard-K-of-N.json; mergeEvalShards (net/eval_table.h)
     // writes table.md, metrics.csv and contact_sheet.png from a complete set.

@@ -13,8 +13,8 @@
 namespace lh::net {
 
 // x: [N, C, (D,) H, W]; weight: [out, C, k, k(, k)]; same padding and stride on every axis.
-torch::Tensor fastConvolution(const torch::Tensor& x, const torch::Tensor& weight, const torch::Tensor& bias,
-                              int64_t stride, int64_t padding);
+torch::Tensor fastConvolution(const torch::Tensor& x, const torch::Tensor& weight,
+                              const torch::Tensor& bias, int64_t stride, int64_t padding);
 
 // Whether fastConvolution uses oneDNN on the CPU (where libtorch has it; on by default). The
 // training-step profile turns it off to measure what it saves.

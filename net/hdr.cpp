@@ -15,6 +15,8 @@ torch::Tensor saturationWeight(const torch::Tensor& linear) {
     return ((brightest - 0.9) / 0.1).clamp(0.0, 1.0);
 }
 
-torch::Tensor radianceFeature(const torch::Tensor& linear) { return torch::log1p(linear.clamp_min(0.0)); }
+torch::Tensor radianceFeature(const torch::Tensor& linear) {
+    return torch::log1p(linear.clamp_min(0.0));
+}
 
 }  // namespace lh::net

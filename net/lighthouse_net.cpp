@@ -31,14 +31,16 @@ int mpi2dOutputChannels(int planes) { return 2 * planes + 4; }
 LighthouseNetImpl::LighthouseNetImpl(const NetConfig& c) : config(c) {
     config.validate();
     if (c.mpiNetwork == "2d")
-        mpiNet2d = register_module("mpi_net2d", UNet2d(mpi2dInputChannels(c.planes), mpi2dOutputChannels(c.planes), c.mpiWidth));
+        mpiNet2d = register_module("mpi_net2d", UNet2d(mpi2dInputChannels(c.planes),
+                                                       mpi2dOutputChannels(c.planes), c.mpiWidth));
     else
         mpiNet = register_module("mpi_net", UNet3d(6, c.hdr ? 6 : 5, c.baseWidth));
     // The 2D (standard) design also gives the completion networks voxel positions (3 channels).
     const int positionChannels = c.mpiNetwork == "2d" ? 3 : 0;
     for (int k = 0; k < c.levels; ++k)
-        completion.push_back(register_module("completion" + std::to_string(k),
-                                             UNet3d((k == 0 ? 4 : 8) + positionChannels, 5, c.baseWidth)));
+        completion.push_back(
+            register_module("completion" + std::to_string(k),
+                            UNet3d((k == 0 ? 4 : 8) + positionChannels, 5, c.baseWidth)));
 }
 
 torch::Tensor LighthouseNetImpl::logColourAnchor(const torch::Tensor& refLinear) const {
@@ -56,16 +58,17 @@ torch::Tensor inventedColour(const torch::Tensor& logit, bool hdr, const torch::
 
 }  // namespace
 
-torch::Tensor LighthouseNetImpl::predictMpi(const torch::Tensor& psv, const torch::Tensor& refLinear,
+torch::Tensor LighthouseNetImpl::predictMpi(const torch::Tensor& psv,
+                                            const torch::Tensor& refLinear,
                                             const torch::Tensor& logAnchor) {
     const int64_t d = psv.size(2), h = psv.size(3), w = psv.size(4);
     torch::Tensor background, weight, alpha, boost;  // [1, 3|1, D|1, H, W]
     if (mpiNet2d) {
-        const auto ref = psv.select(2, 0).narrow(1, 0, 3);                   // [1, 3, H, W]
-        const auto warped = psv.narrow(1, 3, 3);                              // [1, 3, D, H, W]
-        const auto cost = (warped - ref.unsqueeze(2)).abs().mean(1);          // [1, D, H, W]
+        const auto ref = psv.select(2, 0).narrow(1, 0, 3);            // [1, 3, H, W]
+        const auto warped = psv.narrow(1, 3, 3);                      // [1, 3, D, H, W]
+        const auto cost = (warped - ref.unsqueeze(2)).abs().mean(1);  // [1, D, H, W]
         const auto input = torch::cat({ref, warped.reshape({1, 3 * d, h, w}), cost}, 1);
-        const auto out = mpiNet2d(input);                                     // [1, 2D + 4, H, W]
+        const auto out = mpiNet2d(input);  // [1, 2D + 4, H, W]
         alpha = torch::sigmoid(out.narrow(1, 0, d)).unsqueeze(1);
         weight = torch::sigmoid(out.narrow(1, d, d)).unsqueeze(1);
         const auto bgLogit = out.narrow(1, 2 * d, 3).unsqueeze(2);
@@ -83,7 +86,9 @@ torch::Tensor LighthouseNetImpl::predictMpi(const torch::Tensor& psv, const torc
     auto refColour = refLinear.unsqueeze(2);  // [1, 3, 1, H, W]
     // Where the photo clipped (lamps, windows) the truth is brighter than 1: the network may
     // scale those pixels up by exp(softplus(boost)), and only those.
-    if (config.hdr) refColour = refColour * torch::exp(saturationWeight(refLinear).unsqueeze(2) * F::softplus(boost));
+    if (config.hdr)
+        refColour =
+            refColour * torch::exp(saturationWeight(refLinear).unsqueeze(2) * F::softplus(boost));
     const auto rgb = weight * refColour + (1.0 - weight) * background;
     return torch::cat({rgb, alpha}, 1);
 }
@@ -120,12 +125,15 @@ torch::Tensor completionFeatures(const torch::Tensor& cube, bool hdr, bool halve
 }  // namespace
 
 std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::Tensor>& inputs,
-                                                       const VolumeLayout& layout, const torch::Tensor& logAnchor) {
+                                                       const VolumeLayout& layout,
+                                                       const torch::Tensor& logAnchor) {
     std::vector<torch::Tensor> out;
     const bool halve = config.completionScale == 2;
     const VolumeLayout networkLayout{layout.s0, layout.levels, config.completionResolution()};
     for (size_t k = 0; k < inputs.size(); ++k) {
-        const auto input = k == 0 ? inputs[k] : torch::cat({inputs[k], cropCoarserLevel(out.back(), int(k) - 1)}, 1);
+        const auto input =
+            k == 0 ? inputs[k]
+                   : torch::cat({inputs[k], cropCoarserLevel(out.back(), int(k) - 1)}, 1);
         auto features = completionFeatures(input, config.hdr, halve);
         if (config.mpiNetwork == "2d") {
             constexpr double kPositionUnit = 4.0;  // metres
@@ -137,10 +145,12 @@ std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::
         }
         auto raw = completion[k](features);  // [1, 5, r, r, r]
         if (halve)
-            raw = F::interpolate(raw, F::InterpolateFuncOptions()
-                                          .size(std::vector<int64_t>{inputs[k].size(2), inputs[k].size(3), inputs[k].size(4)})
-                                          .mode(torch::kTrilinear)
-                                          .align_corners(false));
+            raw = F::interpolate(
+                raw, F::InterpolateFuncOptions()
+                         .size(std::vector<int64_t>{inputs[k].size(2), inputs[k].size(3),
+                                                    inputs[k].size(4)})
+                         .mode(torch::kTrilinear)
+                         .align_corners(false));
         const auto colourLogit = raw.narrow(1, 0, 3);
         const auto colour = inventedColour(colourLogit, config.hdr, logAnchor);
         const auto predicted = torch::cat({colour, torch::sigmoid(raw.narrow(1, 3, 1))}, 1);
@@ -156,15 +166,15 @@ PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) 
     const auto logAnchor = logColourAnchor(in.refLinear);
     result.mpi = predictMpi(psv, in.refLinear, logAnchor);
     for (int k = 0; k < in.layout.levels; ++k)
-        result.mpiCubes.push_back(
-            resampleMpiToLevel(result.mpi, in.depths, in.ref, in.layout, k, config.hdr ? kMaxMpiRadiance : 1.0));
+        result.mpiCubes.push_back(resampleMpiToLevel(result.mpi, in.depths, in.ref, in.layout, k,
+                                                     config.hdr ? kMaxMpiRadiance : 1.0));
     if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout, logAnchor);
     return result;
 }
 
 PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const PinholeCamera& refCamera,
-                          const PinholeCamera& srcCamera, double near, double far, const NetConfig& config,
-                          const torch::Device& device) {
+                          const PinholeCamera& srcCamera, double near, double far,
+                          const NetConfig& config, const torch::Device& device) {
     PairInputs in;
     in.ref = refCamera.resized(config.width, config.height);
     in.src = srcCamera.resized(config.width, config.height);
@@ -215,7 +225,9 @@ void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision) 
 
 LighthouseNet loadModel(const std::string& path, const torch::Device& device) {
     if (!std::filesystem::is_regular_file(path))
-        throw FileError("model file '" + path + "' not found (train one with 'lighthouse train', or omit --model to use the bundled one)");
+        throw FileError("model file '" + path +
+                        "' not found (train one with 'lighthouse train', or omit --model to use "
+                        "the bundled one)");
     torch::serialize::InputArchive archive;
     c10::IValue configValue;
     try {
@@ -223,17 +235,20 @@ LighthouseNet loadModel(const std::string& path, const torch::Device& device) {
         if (!archive.try_read("lighthouse_config", configValue) || !configValue.isString())
             throw FileError("'" + path + "' is not a Lighthouse model (no configuration inside)");
     } catch (const c10::Error& e) {
-        throw FileError("'" + path + "' is not a readable model file: " + std::string(e.what_without_backtrace()));
+        throw FileError("'" + path + "' is not a readable model file: " +
+                        std::string(e.what_without_backtrace()));
     }
     LighthouseNet net(NetConfig::fromJson(configValue.toStringRef(), path));
     c10::IValue halfValue;
     // Parameters are read into tensors of the file's type, then computed in float.
-    if (archive.try_read("lighthouse_half_precision", halfValue) && halfValue.isBool() && halfValue.toBool())
+    if (archive.try_read("lighthouse_half_precision", halfValue) && halfValue.isBool() &&
+        halfValue.toBool())
         net->to(torch::kCPU, torch::kHalf);
     try {
         net->load(archive);
     } catch (const c10::Error& e) {
-        throw FileError("'" + path + "' does not match its configuration: " + std::string(e.what_without_backtrace()));
+        throw FileError("'" + path + "' does not match its configuration: " +
+                        std::string(e.what_without_backtrace()));
     }
     net->to(device, torch::kFloat32);  // half-precision files are computed in float
     net->eval();

@@ -32,8 +32,8 @@ struct PipelineOutput {
 struct LighthouseNetImpl : torch::nn::Module {
     explicit LighthouseNetImpl(const NetConfig& config);
     NetConfig config;
-    UNet3d mpiNet{nullptr};      // config.mpiNetwork == "3d"
-    UNet2d mpiNet2d{nullptr};    // config.mpiNetwork == "2d"
+    UNet3d mpiNet{nullptr};          // config.mpiNetwork == "3d"
+    UNet2d mpiNet2d{nullptr};        // config.mpiNetwork == "2d"
     std::vector<UNet3d> completion;  // coarsest first
 
     // The MPI from the plane-sweep volume [1, 6, D, H, W] and the linear reference image:
@@ -48,7 +48,8 @@ struct LighthouseNetImpl : torch::nn::Module {
     // Besides the cubes, every network sees where its voxels are: their centres in the
     // reference camera's frame in units of 4 m (so the floor below the camera, or the wall
     // behind it, is at the same value on every level), for the `standard` design.
-    std::vector<torch::Tensor> complete(const std::vector<torch::Tensor>& inputCubes, const VolumeLayout& layout,
+    std::vector<torch::Tensor> complete(const std::vector<torch::Tensor>& inputCubes,
+                                        const VolumeLayout& layout,
                                         const torch::Tensor& logAnchor = {});
     // ln of the photo's mean linear colour per channel, [1, 3, 1, 1, 1] (floored at 1e-3), added
     // to every invented colour's logit when config.colourAnchor; undefined otherwise.
@@ -61,8 +62,8 @@ TORCH_MODULE(LighthouseNet);
 // size (intrinsics scaled), planes linear in disparity between near and far, and the layout
 // of the volume (docs/conventions.md#nested-volume-layout: s0 = 2 min(far, 20)).
 PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const PinholeCamera& refCamera,
-                          const PinholeCamera& srcCamera, double near, double far, const NetConfig& config,
-                          const torch::Device& device);
+                          const PinholeCamera& srcCamera, double near, double far,
+                          const NetConfig& config, const torch::Device& device);
 
 // The part of completed level k-1 that level k covers, upsampled 2x (nearest): [1, C, R, R, R].
 torch::Tensor cropCoarserLevel(const torch::Tensor& coarser, int coarserLevel);

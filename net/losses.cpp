@@ -12,8 +12,12 @@ namespace F = torch::nn::functional;
 namespace {
 
 torch::Tensor gradientL1(const torch::Tensor& a, const torch::Tensor& b) {
-    const auto dx = [](const torch::Tensor& t) { return t.narrow(3, 1, t.size(3) - 1) - t.narrow(3, 0, t.size(3) - 1); };
-    const auto dy = [](const torch::Tensor& t) { return t.narrow(2, 1, t.size(2) - 1) - t.narrow(2, 0, t.size(2) - 1); };
+    const auto dx = [](const torch::Tensor& t) {
+        return t.narrow(3, 1, t.size(3) - 1) - t.narrow(3, 0, t.size(3) - 1);
+    };
+    const auto dy = [](const torch::Tensor& t) {
+        return t.narrow(2, 1, t.size(2) - 1) - t.narrow(2, 0, t.size(2) - 1);
+    };
     return (dx(a) - dx(b)).abs().mean() + (dy(a) - dy(b)).abs().mean();
 }
 
@@ -31,7 +35,8 @@ torch::Tensor imageLoss(const torch::Tensor& predictedLinear, const torch::Tenso
 }
 
 SpectralConv2dImpl::SpectralConv2dImpl(int in, int out, int s) : stride(s) {
-    weight = register_parameter("weight", torch::randn({out, in, 4, 4}) * std::sqrt(2.0 / (in * 16)));
+    weight =
+        register_parameter("weight", torch::randn({out, in, 4, 4}) * std::sqrt(2.0 / (in * 16)));
     bias = register_parameter("bias", torch::zeros({out}));
     u = register_buffer("u", F::normalize(torch::randn({out}), F::NormalizeFuncOptions().dim(0)));
 }
@@ -46,9 +51,11 @@ torch::Tensor SpectralConv2dImpl::forward(const torch::Tensor& x) {
     // A copy of u: the next training forward pass updates the buffer in place, and this pass's
     // graph must keep the value it used.
     const auto uNow = u.detach().clone();
-    const auto v = F::normalize(torch::mv(matrix.t(), uNow), F::NormalizeFuncOptions().dim(0)).detach();
+    const auto v =
+        F::normalize(torch::mv(matrix.t(), uNow), F::NormalizeFuncOptions().dim(0)).detach();
     const auto sigma = torch::dot(uNow, torch::mv(matrix, v));
-    return F::conv2d(x, weight / sigma, F::Conv2dFuncOptions().bias(bias).stride(stride).padding(1));
+    return F::conv2d(x, weight / sigma,
+                     F::Conv2dFuncOptions().bias(bias).stride(stride).padding(1));
 }
 
 PatchDiscriminatorImpl::PatchDiscriminatorImpl() {
@@ -63,7 +70,8 @@ torch::Tensor PatchDiscriminatorImpl::forward(const torch::Tensor& x) {
     auto h = x;
     for (size_t i = 0; i < layers.size(); ++i) {
         h = layers[i](h);
-        if (i + 1 < layers.size()) h = F::leaky_relu(h, F::LeakyReLUFuncOptions().negative_slope(0.2));
+        if (i + 1 < layers.size())
+            h = F::leaky_relu(h, F::LeakyReLUFuncOptions().negative_slope(0.2));
     }
     return h;
 }
@@ -94,7 +102,9 @@ int64_t zeroNonFiniteGradients(const std::vector<torch::Tensor>& parameters) {
 namespace lh::net {
 
 torch::Tensor hdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& target) {
-    return (torch::log1p(predicted.clamp_min(0.0)) - torch::log1p(target.clamp_min(0.0))).abs().mean();
+    return (torch::log1p(predicted.clamp_min(0.0)) - torch::log1p(target.clamp_min(0.0)))
+        .abs()
+        .mean();
 }
 
 torch::Tensor axisIrradianceTensor(const torch::Tensor& envmaps) {
@@ -123,7 +133,8 @@ torch::Tensor irradianceLoss(const torch::Tensor& predicted, const torch::Tensor
     return ((ep - et).abs() / (et + floor)).mean();
 }
 
-torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted, const std::vector<torch::Tensor>& target) {
+torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted,
+                        const std::vector<torch::Tensor>& target) {
     constexpr double kAlphaFloor = 1e-4, kCrossEntropyWeight = 0.1;
     auto total = torch::zeros({}, predicted.front().options());
     for (size_t k = 0; k < predicted.size(); ++k) {
@@ -140,7 +151,9 @@ torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted, const std::
         // Colour where the oracle has a surface, whatever the predicted alpha: a premultiplied
         // error would let a nearly transparent voxel chase the target with a huge colour.
         const auto radianceError = ta * (torch::log1p(predicted[k].narrow(1, 0, 3).clamp_min(0.0)) -
-                                         torch::log1p(target[k].narrow(1, 0, 3))).abs().mean(1, true);
+                                         torch::log1p(target[k].narrow(1, 0, 3)))
+                                            .abs()
+                                            .mean(1, true);
         total = total + ((alphaError + radianceError) * weight).sum() / weight.sum();
     }
     return total / double(predicted.size());
@@ -159,7 +172,8 @@ torch::Tensor mpiExpectedDisparity(const torch::Tensor& mpi, const std::vector<d
     return (weights * disp).sum(2) + remaining * (1.0 / depths.front());
 }
 
-torch::Tensor mpiDepthLoss(const torch::Tensor& mpi, const std::vector<double>& depths, const torch::Tensor& trueDepth) {
+torch::Tensor mpiDepthLoss(const torch::Tensor& mpi, const std::vector<double>& depths,
+                           const torch::Tensor& trueDepth) {
     const double range = 1.0 / depths.back() - 1.0 / depths.front();
     const auto truth = 1.0 / trueDepth.clamp_min(1e-3);
     return (mpiExpectedDisparity(mpi, depths) - truth).abs().mean() / range;

@@ -22,7 +22,8 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Te
 // its mean). Envmaps [N, 3, H, W] in the equirectangular layout. A lamp the photo cannot place
 // costs the per-pixel losses twice where it is guessed wrong, and so they leave it out; this
 // loss asks only for the right light from each side, which a compact bright guess gives.
-torch::Tensor irradianceLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
+torch::Tensor irradianceLoss(const torch::Tensor& predictedLinear,
+                             const torch::Tensor& targetLinear);
 
 // The six axis irradiances [N, 3, 6] of envmaps [N, 3, H, W] (normals +x, -x, +y, -y, +z, -z).
 torch::Tensor axisIrradianceTensor(const torch::Tensor& envmaps);
@@ -33,13 +34,15 @@ torch::Tensor axisIrradianceTensor(const torch::Tensor& envmaps);
 // [1e-4, 1 - 1e-4]; it keeps a gradient through a saturated sigmoid), and for colour,
 // alpha_oracle times the L1 of ln(1 + rgb) (colour where the oracle has matter); each voxel
 // weighted by 1 + 2 alpha_oracle; the mean over levels.
-torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted, const std::vector<torch::Tensor>& target);
+torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted,
+                        const std::vector<torch::Tensor>& target);
 
 // The MPI's depth against the reference view's true depth: the L1 of the composited
 // disparity (the remaining transmittance lands on the far plane) against 1 / depth, divided by
 // the planes' disparity range so that it is 1 for a prediction off by the whole range.
 // mpi [1, 4, D, H, W], planes far to near at `depths`; trueDepth [1, 1, H, W], metres.
-torch::Tensor mpiDepthLoss(const torch::Tensor& mpi, const std::vector<double>& depths, const torch::Tensor& trueDepth);
+torch::Tensor mpiDepthLoss(const torch::Tensor& mpi, const std::vector<double>& depths,
+                           const torch::Tensor& trueDepth);
 
 // The MPI's expected disparity per pixel [1, 1, H, W] (used by mpiDepthLoss and its tests).
 torch::Tensor mpiExpectedDisparity(const torch::Tensor& mpi, const std::vector<double>& depths);
@@ -66,7 +69,8 @@ struct PatchDiscriminatorImpl : torch::nn::Module {
 TORCH_MODULE(PatchDiscriminator);
 
 // Hinge losses: the discriminator's on real and fake scores, and the generator's.
-torch::Tensor discriminatorHingeLoss(const torch::Tensor& realScores, const torch::Tensor& fakeScores);
+torch::Tensor discriminatorHingeLoss(const torch::Tensor& realScores,
+                                     const torch::Tensor& fakeScores);
 torch::Tensor generatorHingeLoss(const torch::Tensor& fakeScores);
 
 // Sets non-finite gradient entries to zero (the paper's NaN guard) and returns how many were.

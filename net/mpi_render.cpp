@@ -14,12 +14,14 @@ torch::Tensor targetToPlaneGrid(const PinholeCamera& ref, const PinholeCamera& t
                                 const std::vector<double>& depths) {
     const auto rays = torch::matmul(pixelRaysCamera(target), rotationTensor(target).t());  // world
     // Into the reference camera frame.
-    const auto origin = torch::matmul(positionTensor(target) - positionTensor(ref), rotationTensor(ref));
+    const auto origin =
+        torch::matmul(positionTensor(target) - positionTensor(ref), rotationTensor(ref));
     const auto dir = torch::matmul(rays, rotationTensor(ref));  // [Ht, Wt, 3]
     const auto depth = torch::tensor(depths, torch::kFloat64).view({-1, 1, 1});
     const auto dz = dir.select(-1, 2).unsqueeze(0);
     const auto valid = dz.abs() > 1e-12;
-    const auto s = (depth - origin[2]) / torch::where(valid, dz, torch::ones_like(dz));  // [D, Ht, Wt]
+    const auto s =
+        (depth - origin[2]) / torch::where(valid, dz, torch::ones_like(dz));  // [D, Ht, Wt]
     const auto hits = valid & (s > 0);
     const auto x = origin[0] + s * dir.select(-1, 0).unsqueeze(0);
     const auto y = origin[1] + s * dir.select(-1, 1).unsqueeze(0);

@@ -1,12 +1,13 @@
 // Differentiable resampling of an MPI onto the nested cubes of the lighting volume
-// (docs/method.md#resampling-into-the-nested-cubes). Every voxel centre is projected into the reference camera, its fractional
-// plane index found from its disparity, and the MPI sampled trilinearly in (row, column,
-// plane) with premultiplied colour; voxels outside the frustum or the depth range are empty.
+// (docs/method.md#resampling-into-the-nested-cubes). Every voxel centre is projected into the
+// reference camera, its fractional plane index found from its disparity, and the MPI sampled
+// trilinearly in (row, column, plane) with premultiplied colour; voxels outside the frustum or the
+// depth range are empty.
 //
 // Cubes are [1, 4, R, R, R] tensors indexed [channel, z, y, x] holding linear RGB and the
-// voxel opacity alpha_v = 1 - exp(-sigma * voxelSize) (docs/conventions.md#lighting-volume), so the density is
-// sigma = -ln(1 - alpha_v) / voxelSize. MPI plane alpha covers one plane spacing, which at depth
-// z is z^2 times the disparity step: alpha_v = 1 - (1 - alpha)^(voxelSize / spacing).
+// voxel opacity alpha_v = 1 - exp(-sigma * voxelSize) (docs/conventions.md#lighting-volume), so the
+// density is sigma = -ln(1 - alpha_v) / voxelSize. MPI plane alpha covers one plane spacing, which
+// at depth z is z^2 times the disparity step: alpha_v = 1 - (1 - alpha)^(voxelSize / spacing).
 #pragma once
 
 #include "core/camera.h"

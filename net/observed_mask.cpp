@@ -41,8 +41,7 @@ std::vector<std::uint8_t> observedMaskFromDepth(const ImageRGB& positions,
             continue;
         const double depth = refDepth.at(int(pixel.x()), int(pixel.y()))[0];
         const bool surfaceThere = std::isfinite(depth) && depth > 0.0;
-        if (surfaceThere &&
-            inCamera.z() > depth + tolerance.relative * depth + tolerance.absolute)
+        if (surfaceThere && inCamera.z() > depth + tolerance.relative * depth + tolerance.absolute)
             continue;  // something nearer hides it
         mask[p] = 1;
     }

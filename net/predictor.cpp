@@ -15,20 +15,25 @@ std::string defaultModelPath() { return LIGHTHOUSE_DEFAULT_MODEL; }
 
 void validateStereoPair(const StereoPair& pair) {
     const CamerasFile& c = pair.cameras;
-    if (!c.src) throw InputError("cameras.json has no 'src' camera: prediction needs the second image's camera");
+    if (!c.src)
+        throw InputError(
+            "cameras.json has no 'src' camera: prediction needs the second image's camera");
     const auto checkImage = [](const ImageRGB& im, const PinholeCamera& cam, const char* name) {
         if (im.width != cam.width || im.height != cam.height)
             throw InputError(std::string(name) + " image is " + std::to_string(im.width) + "x" +
-                             std::to_string(im.height) + " but cameras.json says " + std::to_string(cam.width) +
-                             "x" + std::to_string(cam.height));
+                             std::to_string(im.height) + " but cameras.json says " +
+                             std::to_string(cam.width) + "x" + std::to_string(cam.height));
         for (float v : im.pixels)
-            if (!std::isfinite(v)) throw InputError(std::string(name) + " image holds NaN or infinite values");
+            if (!std::isfinite(v))
+                throw InputError(std::string(name) + " image holds NaN or infinite values");
     };
     checkImage(pair.ref, c.ref, "reference");
     checkImage(pair.src, *c.src, "source");
     const double baseline = (c.src->position - c.ref.position).length();
     if (!(baseline > 1e-9))
-        throw InputError("the two cameras are at the same place (zero baseline): a stereo pair needs two viewpoints");
+        throw InputError(
+            "the two cameras are at the same place (zero baseline): a stereo pair needs two "
+            "viewpoints");
     if (c.near && c.far && !(*c.near > 0 && *c.far > *c.near))
         throw InputError("cameras.json needs 0 < near < far");
 }
@@ -41,12 +46,15 @@ std::vector<std::string> stereoPairWarnings(const StereoPair& pair) {
     char text[200];
     if (baseline > kImplausibleBaseline) {
         std::snprintf(text, sizeof text,
-                      "the source camera is %.3g m from the reference; a stereo pair for this method is 5-15 cm "
+                      "the source camera is %.3g m from the reference; a stereo pair for this "
+                      "method is 5-15 cm "
                       "apart (check cameras.json's units and that cam_to_world is camera-to-world)",
                       baseline);
         warnings.push_back(text);
     } else if (c.near && baseline > *c.near) {
-        std::snprintf(text, sizeof text, "the baseline (%.3g m) exceeds the nearest depth (%.3g m): the views hardly overlap there",
+        std::snprintf(text, sizeof text,
+                      "the baseline (%.3g m) exceeds the nearest depth (%.3g m): the views hardly "
+                      "overlap there",
                       baseline, *c.near);
         warnings.push_back(text);
     }
@@ -70,7 +78,8 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
         impl_->net->to(impl_->device);
         impl_->net->eval();
     } else {
-        impl_->net = loadModel(options.model.empty() ? defaultModelPath() : options.model, impl_->device);
+        impl_->net =
+            loadModel(options.model.empty() ? defaultModelPath() : options.model, impl_->device);
     }
 }
 
@@ -91,8 +100,9 @@ Prediction Predictor::predict(const StereoPair& pair) const {
     }
     const NetConfig& config = impl_->net->config;
     const auto start = std::chrono::steady_clock::now();
-    const PairInputs inputs = makePairInputs(pair.ref, pair.src, cams.ref, *cams.src, result.range.near,
-                                             result.range.far, config, impl_->device);
+    const PairInputs inputs =
+        makePairInputs(pair.ref, pair.src, cams.ref, *cams.src, result.range.near, result.range.far,
+                       config, impl_->device);
     torch::NoGradGuard noGrad;
     const PipelineOutput out = impl_->net->run(inputs, true);
     result.volume = cubesToVolume(out.cubes, inputs.layout, impl_->pruneAlpha);
@@ -100,7 +110,8 @@ Prediction Predictor::predict(const StereoPair& pair) const {
     result.mpi = tensorToMpi(out.mpi, inputs.ref, inputs.depths);
     result.volume.refCamera = cams.ref;
     result.mpiOnly.refCamera = cams.ref;
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
 

@@ -19,8 +19,8 @@
 namespace lh::net {
 
 struct StereoPair {
-    ImageRGB ref, src;     // linear (PNG/JPEG inputs decoded from sRGB)
-    CamerasFile cameras;   // ref and src required; near/far optional
+    ImageRGB ref, src;    // linear (PNG/JPEG inputs decoded from sRGB)
+    CamerasFile cameras;  // ref and src required; near/far optional
 };
 
 // Throws InputError naming what is wrong: no src camera, image sizes that differ from the
@@ -41,7 +41,7 @@ struct Prediction {
     Mpi mpi;                 // in the reference camera, at the network's input size
     DepthRange range;        // used depth range; votes/fallback set when it was estimated
     bool rangeEstimated = false;
-    double seconds = 0;      // network time, wall clock
+    double seconds = 0;  // network time, wall clock
 };
 
 // Default pruning threshold of predicted volumes (voxel alpha): below it a voxel holds
@@ -51,11 +51,11 @@ struct Prediction {
 constexpr float kDefaultPruneAlpha = 0.03f;
 
 struct PredictorOptions {
-    std::string model;        // empty: the bundled model (models/standard.pt)
+    std::string model;  // empty: the bundled model (models/standard.pt)
     std::string device = "cpu";
-    int threads = 0;          // 0: every core
-    // Timing only: random weights of this configuration ("standard", "small" or "paper") instead of a
-    // model file, so both configurations can be timed without training the paper-sized one.
+    int threads = 0;  // 0: every core
+    // Timing only: random weights of this configuration ("standard", "small" or "paper") instead of
+    // a model file, so both configurations can be timed without training the paper-sized one.
     std::string untrainedConfig;
     // Voxels of the completed volume whose opacity over one voxel is below this are left
     // empty; 0 keeps everything down to volume_export.h's 1e-4.

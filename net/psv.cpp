@@ -36,7 +36,9 @@ torch::Tensor planeSweepVolume(const torch::Tensor& refImage, const torch::Tenso
                                            .padding_mode(torch::kZeros)
                                            .align_corners(false));  // [D, 3, H, W]
     const auto refPlanes = refImage.expand({d, -1, -1, -1});
-    return torch::cat({refPlanes, warped}, 1).permute({1, 0, 2, 3}).unsqueeze(0);  // [1, 6, D, H, W]
+    return torch::cat({refPlanes, warped}, 1)
+        .permute({1, 0, 2, 3})
+        .unsqueeze(0);  // [1, 6, D, H, W]
 }
 
 }  // namespace lh::net

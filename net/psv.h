@@ -1,5 +1,6 @@
-// The plane-sweep volume (docs/method.md#plane-sweep-volume): the source image warped onto fronto-parallel planes
-// of the reference camera by the plane-induced homography, bilinear, zero outside the image.
+// The plane-sweep volume (docs/method.md#plane-sweep-volume): the source image warped onto
+// fronto-parallel planes of the reference camera by the plane-induced homography, bilinear, zero
+// outside the image.
 #pragma once
 
 #include "core/camera.h"

@@ -45,16 +45,22 @@ PairInputs planeInputs(const NetConfig& config) {
 
 }  // namespace
 
-std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats, int threads, bool oneDnn) {
+std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats, int threads,
+                                           bool oneDnn) {
     setTorchThreads(threads);
     setOneDnnConvolution(oneDnn);
     torch::manual_seed(0);
     LighthouseNet net(config);
     net->train();
     const PairInputs in = planeInputs(config);
-    std::vector<StageTime> times = {{"plane sweep"}, {"MPI network"}, {"MPI view render + loss"},
-                                    {"MPI -> cubes resampling"}, {"completion networks"},
-                                    {"envmap render + losses"}, {"voxel loss"}, {"optimiser step (Adam)"}};
+    std::vector<StageTime> times = {{"plane sweep"},
+                                    {"MPI network"},
+                                    {"MPI view render + loss"},
+                                    {"MPI -> cubes resampling"},
+                                    {"completion networks"},
+                                    {"envmap render + losses"},
+                                    {"voxel loss"},
+                                    {"optimiser step (Adam)"}};
     torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(1e-4));
     for (int r = 0; r < repeats + 1; ++r) {  // the first round warms up and is not counted
         const bool counted = r > 0;
@@ -64,12 +70,18 @@ std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats,
             times[size_t(stage)].backwardSeconds += b / repeats;
         };
         torch::Tensor psv, mpi, loss;
-        add(0, seconds([&] { psv = planeSweepVolume(in.refEncoded, in.srcEncoded, in.ref, in.src, in.depths); }), 0);
-        double f = seconds([&] { mpi = net->predictMpi(psv, in.refLinear, net->logColourAnchor(in.refLinear)); });
+        add(0, seconds([&] {
+                psv = planeSweepVolume(in.refEncoded, in.srcEncoded, in.ref, in.src, in.depths);
+            }),
+            0);
+        double f = seconds(
+            [&] { mpi = net->predictMpi(psv, in.refLinear, net->logColourAnchor(in.refLinear)); });
         add(1, f, seconds([&] { mpi.sum().backward(); }));
 
         const auto mpiLeaf = mpi.detach().requires_grad_(true);
-        f = seconds([&] { loss = imageLoss(renderMpiView(mpiLeaf, in.depths, in.ref, in.ref), in.refLinear); });
+        f = seconds([&] {
+            loss = imageLoss(renderMpiView(mpiLeaf, in.depths, in.ref, in.ref), in.refLinear);
+        });
         add(2, f, seconds([&] { loss.backward(); }));
 
         std::vector<torch::Tensor> cubes;
@@ -86,7 +98,9 @@ std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats,
 
         std::vector<torch::Tensor> inputs, completed;
         for (const auto& c : cubes) inputs.push_back(c.detach());
-        f = seconds([&] { completed = net->complete(inputs, in.layout, net->logColourAnchor(in.refLinear)); });
+        f = seconds([&] {
+            completed = net->complete(inputs, in.layout, net->logColourAnchor(in.refLinear));
+        });
         add(4, f, seconds([&] {
                 torch::Tensor total = torch::zeros({});
                 for (const auto& c : completed) total = total + c.sum();
@@ -97,8 +111,9 @@ std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats,
         for (const auto& c : completed) leaves.push_back(c.detach().requires_grad_(true));
         const auto target = torch::full({1, 3, config.trainEnvHeight, config.trainEnvWidth}, 0.3);
         f = seconds([&] {
-            const auto env = renderEnvmapTorch(leaves, in.layout, Vec3d(0.1, 0.0, 1.5), config.trainEnvWidth,
-                                               config.trainEnvHeight, config.samplesPerLevel);
+            const auto env =
+                renderEnvmapTorch(leaves, in.layout, Vec3d(0.1, 0.0, 1.5), config.trainEnvWidth,
+                                  config.trainEnvHeight, config.samplesPerLevel);
             loss = imageLoss(env, target) + hdrImageLoss(env, target);
         });
         add(5, f, seconds([&] { loss.backward(); }));

@@ -18,6 +18,7 @@ struct StageTime {
 };
 
 // `threads` libtorch threads; oneDnn: whether convolutions take oneDNN's kernels (fast_conv.h).
-std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats, int threads, bool oneDnn);
+std::vector<StageTime> profileTrainingStep(const NetConfig& config, int repeats, int threads,
+                                           bool oneDnn);
 
 }  // namespace lh::net

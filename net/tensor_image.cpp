@@ -5,15 +5,17 @@
 namespace lh::net {
 
 torch::Tensor imageToTensor(const ImageRGB& image) {
-    auto t = torch::from_blob(const_cast<float*>(image.pixels.data()), {image.height, image.width, 3},
-                              torch::kFloat32)
+    auto t = torch::from_blob(const_cast<float*>(image.pixels.data()),
+                              {image.height, image.width, 3}, torch::kFloat32)
                  .clone();
     return t.permute({2, 0, 1}).unsqueeze(0).contiguous();
 }
 
 ImageRGB tensorToImage(const torch::Tensor& t) {
-    if (t.dim() != 4 || t.size(0) != 1 || t.size(1) != 3) throw InputError("tensorToImage expects [1, 3, H, W]");
-    const auto hwc = t.detach().to(torch::kCPU, torch::kFloat32).squeeze(0).permute({1, 2, 0}).contiguous();
+    if (t.dim() != 4 || t.size(0) != 1 || t.size(1) != 3)
+        throw InputError("tensorToImage expects [1, 3, H, W]");
+    const auto hwc =
+        t.detach().to(torch::kCPU, torch::kFloat32).squeeze(0).permute({1, 2, 0}).contiguous();
     ImageRGB image(int(hwc.size(1)), int(hwc.size(0)));
     std::memcpy(image.pixels.data(), hwc.data_ptr<float>(), image.pixels.size() * sizeof(float));
     return image;
@@ -34,7 +36,8 @@ torch::Tensor rotationTensor(const PinholeCamera& camera) {
 }
 
 torch::Tensor positionTensor(const PinholeCamera& camera) {
-    return torch::tensor({camera.position.x(), camera.position.y(), camera.position.z()}, torch::kFloat64);
+    return torch::tensor({camera.position.x(), camera.position.y(), camera.position.z()},
+                         torch::kFloat64);
 }
 
 torch::Tensor pixelRaysCamera(const PinholeCamera& camera) {

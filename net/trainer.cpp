@@ -44,10 +44,12 @@ void TrainOptions::validate() const {
         throw InputError("--supervision must be 'direct' or 'paper', got '" + supervision + "'");
     if (stopAfter < 0) throw InputError("--stop-after must be at least 0");
     if (batch < 1 || batch > 4096) throw InputError("--batch must be in [1, 4096]");
-    if (!(averageDecay >= 0 && averageDecay < 1)) throw InputError("--average-decay must be in [0, 1)");
+    if (!(averageDecay >= 0 && averageDecay < 1))
+        throw InputError("--average-decay must be in [0, 1)");
     if (batch % distributed.worldSize != 0)
-        throw InputError("--batch " + std::to_string(batch) + " must be a multiple of the world size " +
-                         std::to_string(distributed.worldSize) + " (each rank takes an equal slice)");
+        throw InputError(
+            "--batch " + std::to_string(batch) + " must be a multiple of the world size " +
+            std::to_string(distributed.worldSize) + " (each rank takes an equal slice)");
     (configOverride ? *configOverride : NetConfig::byName(config)).validate();
 }
 
@@ -72,8 +74,9 @@ struct LogRow {
 };
 
 constexpr const char* kLogHeader =
-    "iteration,stage,loss_total,loss_view,loss_envmap,loss_adversarial,loss_discriminator,lr,it_per_s,"
-    "val_psnr_db,val_angular_deg,loss_voxel,loss_depth,s_data,s_forward,s_backward,s_allreduce";
+    "iteration,stage,loss_total,loss_view,loss_envmap,loss_adversarial,loss_discriminator,lr,"
+    "it_per_s,val_psnr_db,val_angular_deg,loss_voxel,loss_depth,s_data,s_forward,s_backward,"
+    "s_allreduce";
 
 // Direct supervision runs every network from the start and has no adversarial stage.
 int stageAt(int iteration, int total, bool direct) {
@@ -93,9 +96,9 @@ struct TrainingState {
 };
 
 void setLearningRate(torch::optim::Adam& optimizer, double lr) {
-    for (auto& group : optimizer.param_groups()) static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
+    for (auto& group : optimizer.param_groups())
+        static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
 }
-
 
 void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
     torch::serialize::OutputArchive archive, net, average, disc, opt, discOpt;
@@ -128,8 +131,11 @@ bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
         archive.load_from(o.checkpointPath());
         c10::IValue config, iteration;
         archive.read("config", config);
-        if (NetConfig::fromJson(config.toStringRef(), o.checkpointPath()).toJson() != s.net->config.toJson())
-            throw FileError("checkpoint '" + o.checkpointPath() + "' was trained with another configuration; delete it or pick another -o");
+        if (NetConfig::fromJson(config.toStringRef(), o.checkpointPath()).toJson() !=
+            s.net->config.toJson())
+            throw FileError(
+                "checkpoint '" + o.checkpointPath() +
+                "' was trained with another configuration; delete it or pick another -o");
         archive.read("net", net);
         archive.read("discriminator", disc);
         archive.read("optimizer", opt);
@@ -138,21 +144,25 @@ bool loadCheckpoint(const TrainOptions& o, TrainingState& s) {
         s.net->load(net);
         // A checkpoint from before the average was kept starts it at its weights.
         torch::serialize::InputArchive average;
-        if (archive.try_read("average", average)) s.average->load(average);
-        else copyWeights(s.average, s.net);
+        if (archive.try_read("average", average))
+            s.average->load(average);
+        else
+            copyWeights(s.average, s.net);
         s.discriminator->load(disc);
         s.optimizer->load(opt);
         s.discriminatorOptimizer->load(discOpt);
         s.iteration = int(iteration.toInt());
     } catch (const c10::Error& e) {
         throw FileError("checkpoint '" + o.checkpointPath() + "' is unreadable (" +
-                        std::string(e.what_without_backtrace()).substr(0, 200) + "); delete it to start afresh");
+                        std::string(e.what_without_backtrace()).substr(0, 200) +
+                        "); delete it to start afresh");
     }
     return true;
 }
 
 std::vector<CurveSeries> nonEmpty(std::vector<CurveSeries> series) {
-    series.erase(std::remove_if(series.begin(), series.end(), [](const CurveSeries& c) { return c.x.empty(); }),
+    series.erase(std::remove_if(series.begin(), series.end(),
+                                [](const CurveSeries& c) { return c.x.empty(); }),
                  series.end());
     return series;
 }
@@ -170,7 +180,9 @@ std::vector<LogRow> readLog(const std::string& path, int lastIteration) {
         std::istringstream header(line);
         for (std::string name; std::getline(header, name, ',');) names.push_back(name);
     }
-    const auto number = [](const std::string& text) { return text == "nan" ? NAN : std::atof(text.c_str()); };
+    const auto number = [](const std::string& text) {
+        return text == "nan" ? NAN : std::atof(text.c_str());
+    };
     while (std::getline(csv, line)) {
         if (line.empty()) continue;
         LogRow r;
@@ -179,23 +191,40 @@ std::vector<LogRow> readLog(const std::string& path, int lastIteration) {
         for (size_t i = 0; i < names.size() && std::getline(row, field, ','); ++i) {
             const std::string& n = names[i];
             const double v = number(field);
-            if (n == "iteration") r.iteration = int(v);
-            else if (n == "stage") r.stage = int(v);
-            else if (n == "loss_total") r.total = v;
-            else if (n == "loss_view") r.view = v;
-            else if (n == "loss_envmap") r.envmap = v;
-            else if (n == "loss_adversarial") r.adversarial = v;
-            else if (n == "loss_discriminator") r.discriminator = v;
-            else if (n == "lr") r.learningRate = v;
-            else if (n == "it_per_s") r.itPerSecond = v;
-            else if (n == "val_psnr_db") r.valPsnr = v;
-            else if (n == "val_angular_deg") r.valAngular = v;
-            else if (n == "loss_voxel") r.voxel = v;
-            else if (n == "loss_depth") r.depth = v;
-            else if (n == "s_data") r.secondsData = v;
-            else if (n == "s_forward") r.secondsForward = v;
-            else if (n == "s_backward") r.secondsBackward = v;
-            else if (n == "s_allreduce") r.secondsAllReduce = v;
+            if (n == "iteration")
+                r.iteration = int(v);
+            else if (n == "stage")
+                r.stage = int(v);
+            else if (n == "loss_total")
+                r.total = v;
+            else if (n == "loss_view")
+                r.view = v;
+            else if (n == "loss_envmap")
+                r.envmap = v;
+            else if (n == "loss_adversarial")
+                r.adversarial = v;
+            else if (n == "loss_discriminator")
+                r.discriminator = v;
+            else if (n == "lr")
+                r.learningRate = v;
+            else if (n == "it_per_s")
+                r.itPerSecond = v;
+            else if (n == "val_psnr_db")
+                r.valPsnr = v;
+            else if (n == "val_angular_deg")
+                r.valAngular = v;
+            else if (n == "loss_voxel")
+                r.voxel = v;
+            else if (n == "loss_depth")
+                r.depth = v;
+            else if (n == "s_data")
+                r.secondsData = v;
+            else if (n == "s_forward")
+                r.secondsForward = v;
+            else if (n == "s_backward")
+                r.secondsBackward = v;
+            else if (n == "s_allreduce")
+                r.secondsAllReduce = v;
         }
         if (r.iteration <= lastIteration) rows.push_back(r);
     }
@@ -206,10 +235,11 @@ void writeLog(const TrainOptions& o, const std::vector<LogRow>& log) {
     std::ostringstream csv;
     csv << kLogHeader << '\n';
     for (const auto& r : log)
-        csv << r.iteration << ',' << r.stage << ',' << r.total << ',' << r.view << ',' << r.envmap << ','
-            << r.adversarial << ',' << r.discriminator << ',' << r.learningRate << ',' << r.itPerSecond << ','
-            << r.valPsnr << ',' << r.valAngular << ',' << r.voxel << ',' << r.depth << ',' << r.secondsData << ','
-            << r.secondsForward << ',' << r.secondsBackward << ',' << r.secondsAllReduce << '\n';
+        csv << r.iteration << ',' << r.stage << ',' << r.total << ',' << r.view << ',' << r.envmap
+            << ',' << r.adversarial << ',' << r.discriminator << ',' << r.learningRate << ','
+            << r.itPerSecond << ',' << r.valPsnr << ',' << r.valAngular << ',' << r.voxel << ','
+            << r.depth << ',' << r.secondsData << ',' << r.secondsForward << ','
+            << r.secondsBackward << ',' << r.secondsAllReduce << '\n';
     writeTextFile(o.out + ".csv", csv.str());
     CurveSeries total{"training loss (sum of the terms)", {}, {}};
     CurveSeries view{"held-out view loss", {}, {}}, env{"envmap loss", {}, {}};
@@ -227,8 +257,8 @@ void writeLog(const TrainOptions& o, const std::vector<LogRow>& log) {
             angular.x.push_back(r.iteration), angular.y.push_back(r.valAngular);
         }
     }
-    writeCurvePlot(o.out + ".png", "lighthouse train: " + fs::path(o.out).filename().string(), "iteration",
-                   nonEmpty({total, view, env, voxel, depth, psnr, angular}));
+    writeCurvePlot(o.out + ".png", "lighthouse train: " + fs::path(o.out).filename().string(),
+                   "iteration", nonEmpty({total, view, env, voxel, depth, psnr, angular}));
 }
 
 // Mean envmap PSNR and angular error (all content) of the current model on held-out scenes,
@@ -239,13 +269,15 @@ std::pair<double, double> validate(LighthouseNet& net, const std::vector<Trainin
     net->eval();
     std::vector<double> psnrs, angles;
     for (const auto& ex : scenes) {
-        const PairInputs in = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
-                                             *ex.cameras.far, net->config, device);
+        const PairInputs in =
+            makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
+                           *ex.cameras.far, net->config, device);
         const PipelineOutput out = net->run(in, true);
         for (size_t e = 0; e < ex.envmaps.size(); ++e) {
             const auto& gt = ex.envmaps[e];
-            const ImageRGB pred = tensorToImage(renderEnvmapTorch(out.cubes, in.layout, ex.cameras.envmaps[e].position,
-                                                                  gt.width, gt.height, net->config.samplesPerLevel));
+            const ImageRGB pred = tensorToImage(
+                renderEnvmapTorch(out.cubes, in.layout, ex.cameras.envmaps[e].position, gt.width,
+                                  gt.height, net->config.samplesPerLevel));
             const EnvmapMetrics m = compareEnvmaps(pred, gt);
             psnrs.push_back(m.psnrAll);
             angles.push_back(m.angularAll);
@@ -258,7 +290,8 @@ std::pair<double, double> validate(LighthouseNet& net, const std::vector<Trainin
 std::string formatDuration(double seconds) {
     const int s = int(std::max(0.0, seconds));
     std::ostringstream out;
-    out << s / 3600 << "h" << std::setw(2) << std::setfill('0') << (s / 60) % 60 << "m" << std::setw(2) << s % 60 << "s";
+    out << s / 3600 << "h" << std::setw(2) << std::setfill('0') << (s / 60) % 60 << "m"
+        << std::setw(2) << s % 60 << "s";
     return out.str();
 }
 
@@ -266,15 +299,16 @@ std::string formatDuration(double seconds) {
 struct PreparedExample {
     PairInputs inputs;
     PinholeCamera target;
-    torch::Tensor targetImage;                 // [1, 3, H, W] linear, the held-out view
-    torch::Tensor refDepth;                    // [1, 1, H, W] metres; undefined without depth.exr
-    std::vector<torch::Tensor> oracle;         // cubes; empty without oracle.vdb
-    std::vector<torch::Tensor> envmaps;        // [1, 3, h, w] linear HDR at the training size
+    torch::Tensor targetImage;           // [1, 3, H, W] linear, the held-out view
+    torch::Tensor refDepth;              // [1, 1, H, W] metres; undefined without depth.exr
+    std::vector<torch::Tensor> oracle;   // cubes; empty without oracle.vdb
+    std::vector<torch::Tensor> envmaps;  // [1, 3, h, w] linear HDR at the training size
     std::vector<Vec3d> envmapPositions;
 };
 
-PreparedExample prepareExample(const std::string& directory, const NetConfig& config, const TrainOptions& o,
-                               Random& rng, const torch::Device& device, bool direct) {
+PreparedExample prepareExample(const std::string& directory, const NetConfig& config,
+                               const TrainOptions& o, Random& rng, const torch::Device& device,
+                               bool direct) {
     TrainingExample ex = loadExample(directory);
     Augmentation a;
     if (o.augment) {
@@ -285,27 +319,31 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
         for (auto& e : ex.envmaps) augmentRadiance(e, a);
     }
     PreparedExample p;
-    p.inputs = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near, *ex.cameras.far,
-                              config, device);
+    p.inputs = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
+                              *ex.cameras.far, config, device);
     p.target = ex.cameras.tgt->resized(config.width, config.height);
     p.targetImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
     for (size_t e = 0; e < ex.envmaps.size(); ++e) {
         p.envmaps.push_back(
-            imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight)).to(device));
+            imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight))
+                .to(device));
         p.envmapPositions.push_back(ex.cameras.envmaps[e].position);
     }
     if (!direct) return p;
     const fs::path dir(directory);
     if (fs::is_regular_file(dir / dataset::kDepth))
-        p.refDepth = imageToTensor(resizeImage(readImage((dir / dataset::kDepth).string()), config.width, config.height))
+        p.refDepth = imageToTensor(resizeImage(readImage((dir / dataset::kDepth).string()),
+                                               config.width, config.height))
                          .narrow(1, 0, 1)
                          .to(device);
     if (fs::is_regular_file(dir / dataset::kOracle)) {
         p.oracle = loadOracleCubes((dir / dataset::kOracle).string(), p.inputs.layout, device);
-        const auto gains = torch::tensor({float(a.factor(0)), float(a.factor(1)), float(a.factor(2)), 1.f})
-                               .view({1, 4, 1, 1, 1})
-                               .to(device);
-        for (auto& c : p.oracle) c = c * gains;  // the scene's light, exposed and balanced as the photos
+        const auto gains =
+            torch::tensor({float(a.factor(0)), float(a.factor(1)), float(a.factor(2)), 1.f})
+                .view({1, 4, 1, 1, 1})
+                .to(device);
+        for (auto& c : p.oracle)
+            c = c * gains;  // the scene's light, exposed and balanced as the photos
     }
     return p;
 }
@@ -335,7 +373,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (!o.validation.empty()) {
         validationDirs = listExamples(o.validation);
     } else {
-        if (trainDirs.size() < 2) throw InputError("need at least 2 examples to hold one out for validation (or pass --val)");
+        if (trainDirs.size() < 2)
+            throw InputError(
+                "need at least 2 examples to hold one out for validation (or pass --val)");
         const size_t held = std::max<size_t>(1, trainDirs.size() / 20);
         validationDirs.assign(trainDirs.end() - long(held), trainDirs.end());
         trainDirs.resize(trainDirs.size() - held);
@@ -343,7 +383,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     std::vector<TrainingExample> validationScenes;
     for (size_t i = 0; i < validationDirs.size() && int(i) < o.validationScenes; ++i)
         validationScenes.push_back(loadExample(validationDirs[i]));
-    if (!fs::path(o.out).parent_path().empty()) fs::create_directories(fs::path(o.out).parent_path());
+    if (!fs::path(o.out).parent_path().empty())
+        fs::create_directories(fs::path(o.out).parent_path());
 
     TrainingState s;
     s.net = LighthouseNet(o.configOverride ? *o.configOverride : NetConfig::byName(o.config));
@@ -354,24 +395,28 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     copyWeights(s.average, s.net);
     s.discriminator = PatchDiscriminator();
     s.discriminator->to(device);
-    s.optimizer = std::make_unique<torch::optim::Adam>(s.net->parameters(), torch::optim::AdamOptions(o.learningRate));
+    s.optimizer = std::make_unique<torch::optim::Adam>(s.net->parameters(),
+                                                       torch::optim::AdamOptions(o.learningRate));
     s.discriminatorOptimizer = std::make_unique<torch::optim::Adam>(
         s.discriminator->parameters(), torch::optim::AdamOptions(o.learningRate).betas({0.0, 0.9}));
     if (loadCheckpoint(o, s)) {
-        progress << "train: resuming from " << o.checkpointPath() << " at iteration " << s.iteration << "\n";
+        progress << "train: resuming from " << o.checkpointPath() << " at iteration " << s.iteration
+                 << "\n";
         s.log = readLog(o.out + ".csv", s.iteration);
     } else if (!o.init.empty()) {
         // Fine-tuning: the weights of a model of the same configuration, a fresh optimiser.
         LighthouseNet start = loadModel(o.init, device);
         if (!start->config.sameParameters(s.net->config))
-            throw InputError("--init '" + o.init + "' is a '" + start->config.name + "' model with other sizes than --config " + o.config);
+            throw InputError("--init '" + o.init + "' is a '" + start->config.name +
+                             "' model with other sizes than --config " + o.config);
         copyWeights(s.net, start);
         copyWeights(s.average, s.net);
-        progress << "train: no checkpoint at " << o.checkpointPath() << "; fine-tuning from " << o.init
-                 << " with a fresh optimiser\n";
+        progress << "train: no checkpoint at " << o.checkpointPath() << "; fine-tuning from "
+                 << o.init << " with a fresh optimiser\n";
         if (start->config.colourAnchor != s.net->config.colourAnchor)
             progress << "train: --init has " << (start->config.colourAnchor ? "a" : "no")
-                     << " colour anchor; this run trains " << (s.net->config.colourAnchor ? "with" : "without") << " one\n";
+                     << " colour anchor; this run trains "
+                     << (s.net->config.colourAnchor ? "with" : "without") << " one\n";
     }
     const NetConfig& config = s.net->config;
     if (comm) {
@@ -382,32 +427,43 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             torch::NoGradGuard noGrad;
             comm->broadcastFromRankZero(weights, "the broadcast of rank 0's weights");
         }
-        const long long iteration0 = comm->broadcastValue(s.iteration, "the check of the checkpoints");
-        const long long scenes0 = comm->broadcastValue((long long)trainDirs.size(), "the check of the data");
+        const long long iteration0 =
+            comm->broadcastValue(s.iteration, "the check of the checkpoints");
+        const long long scenes0 =
+            comm->broadcastValue((long long)trainDirs.size(), "the check of the data");
         if (iteration0 != s.iteration)
-            throw FileError("rank " + std::to_string(rank) + " starts at iteration " + std::to_string(s.iteration) +
-                            " but rank 0 at " + std::to_string(iteration0) + ": every rank must read the same checkpoint '" +
-                            o.checkpointPath() + "' (a shared file system)");
+            throw FileError("rank " + std::to_string(rank) + " starts at iteration " +
+                            std::to_string(s.iteration) + " but rank 0 at " +
+                            std::to_string(iteration0) +
+                            ": every rank must read the same checkpoint '" + o.checkpointPath() +
+                            "' (a shared file system)");
         if (scenes0 != (long long)trainDirs.size())
-            throw FileError("rank " + std::to_string(rank) + " sees " + std::to_string(trainDirs.size()) +
-                            " training scenes in '" + o.data + "' but rank 0 " + std::to_string(scenes0) +
+            throw FileError("rank " + std::to_string(rank) + " sees " +
+                            std::to_string(trainDirs.size()) + " training scenes in '" + o.data +
+                            "' but rank 0 " + std::to_string(scenes0) +
                             ": every rank must read the same data set (a shared file system)");
         std::size_t count = 0;
         for (const auto& p : s.net->parameters()) count += std::size_t(p.numel());
-        progressOfEveryRank << "train: rank " << rank << " of " << world << " joined at " << o.distributed.masterAddress
-                            << ":" << o.distributed.masterPort << "; examples " << rank * (o.batch / world) << ".."
-                            << (rank + 1) * (o.batch / world) - 1 << " of each batch of " << o.batch << "; "
-                            << count << " parameters (" << count * 4 / 1e6 << " MB) all-reduced per step\n";
+        progressOfEveryRank << "train: rank " << rank << " of " << world << " joined at "
+                            << o.distributed.masterAddress << ":" << o.distributed.masterPort
+                            << "; examples " << rank * (o.batch / world) << ".."
+                            << (rank + 1) * (o.batch / world) - 1 << " of each batch of " << o.batch
+                            << "; " << count << " parameters (" << count * 4 / 1e6
+                            << " MB) all-reduced per step\n";
     }
-    progress << "train: config " << config.name << " (" << config.width << "x" << config.height << " input, "
-             << config.planes << " planes, " << config.levels << " x " << config.resolution << "^3), "
-             << trainDirs.size() << " training scenes, " << validationDirs.size() << " held out ("
-             << validationScenes.size() << " validated), " << torch::get_num_threads() << " threads on "
-             << device.str() << ", " << o.supervision << " supervision" << (o.augment ? ", augmented" : "") << "\n";
+    progress << "train: config " << config.name << " (" << config.width << "x" << config.height
+             << " input, " << config.planes << " planes, " << config.levels << " x "
+             << config.resolution << "^3), " << trainDirs.size() << " training scenes, "
+             << validationDirs.size() << " held out (" << validationScenes.size() << " validated), "
+             << torch::get_num_threads() << " threads on " << device.str() << ", " << o.supervision
+             << " supervision" << (o.augment ? ", augmented" : "") << "\n";
 
     std::unique_ptr<VggPerceptualLoss> vgg;
     if (!o.vggWeights.empty()) vgg = std::make_unique<VggPerceptualLoss>(o.vggWeights, device);
-    progress << "train: image loss: " << (vgg ? "VGG-19 perceptual (" + o.vggWeights + ")" : std::string("L1 + gradients (substitute for VGG-19)")) << "\n";
+    progress << "train: image loss: "
+             << (vgg ? "VGG-19 perceptual (" + o.vggWeights + ")"
+                     : std::string("L1 + gradients (substitute for VGG-19)"))
+             << "\n";
     const auto lossOf = [&](const torch::Tensor& predicted, const torch::Tensor& target) {
         return vgg ? (*vgg)(predicted, target) : imageLoss(predicted, target);
     };
@@ -418,21 +474,25 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     auto windowStart = std::chrono::steady_clock::now();
     const auto runStart = windowStart;
     const int firstIteration = s.iteration;
-    const int sittingEnd = o.stopAfter > 0 ? std::min(o.iterations, firstIteration + o.stopAfter) : o.iterations;
+    const int sittingEnd =
+        o.stopAfter > 0 ? std::min(o.iterations, firstIteration + o.stopAfter) : o.iterations;
     for (; s.iteration < sittingEnd; ++s.iteration) {
         const int it = s.iteration;
         const int stage = stageAt(it, o.iterations, direct);
-        const double lr = it >= int(kLowLearningRateStart * o.iterations) ? o.learningRate / 10 : o.learningRate;
+        const double lr =
+            it >= int(kLowLearningRateStart * o.iterations) ? o.learningRate / 10 : o.learningRate;
         setLearningRate(*s.optimizer, lr);
         setLearningRate(*s.discriminatorOptimizer, lr);
 
         // Everything random in this iteration comes from (seed, iteration, example of the batch).
         const int perRank = o.batch / world;
         const double commBefore = comm ? comm->communicationSeconds() : 0;
-        double sums[7] = {0, 0, 0, 0, 0, 0, 0};  // total, view, envmap, adversarial, discriminator, voxel, depth
+        double sums[7] = {
+            0, 0, 0, 0, 0, 0, 0};  // total, view, envmap, adversarial, discriminator, voxel, depth
         s.optimizer->zero_grad();
         for (int j = rank * perRank; j < (rank + 1) * perRank; ++j) {
-            Random rng(j == 0 ? mixSeed(o.seed, uint64_t(it)) : mixSeed(mixSeed(o.seed, uint64_t(it)), uint64_t(j)));
+            Random rng(j == 0 ? mixSeed(o.seed, uint64_t(it))
+                              : mixSeed(mixSeed(o.seed, uint64_t(it)), uint64_t(j)));
             auto clock = std::chrono::steady_clock::now();
             const std::string& dir = trainDirs[size_t(rng.integer(0, int(trainDirs.size()) - 1))];
             const PreparedExample ex = prepareExample(dir, config, o, rng, device, direct);
@@ -441,9 +501,11 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
 
             clock = std::chrono::steady_clock::now();
             const PipelineOutput out = s.net->run(ex.inputs, stage >= 2);
-            const auto viewLoss = lossOf(renderMpiView(out.mpi, ex.inputs.depths, ex.inputs.ref, ex.target), ex.targetImage);
+            const auto viewLoss = lossOf(
+                renderMpiView(out.mpi, ex.inputs.depths, ex.inputs.ref, ex.target), ex.targetImage);
             auto loss = viewLoss;
-            torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}), discLoss = torch::zeros({});
+            torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}),
+                          discLoss = torch::zeros({});
             torch::Tensor voxLoss = torch::zeros({}), depthLoss = torch::zeros({});
             if (ex.refDepth.defined()) {
                 depthLoss = mpiDepthLoss(out.mpi, ex.inputs.depths, ex.refDepth);
@@ -455,9 +517,11 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                 // stage uses the one drawn for this iteration.
                 torch::Tensor env;
                 for (size_t k = 0; k < ex.envmaps.size(); ++k) {
-                    const auto rendered = renderEnvmapTorch(out.cubes, ex.inputs.layout, ex.envmapPositions[k],
-                                                            config.trainEnvWidth, config.trainEnvHeight, config.samplesPerLevel);
-                    envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) + hdrImageLoss(rendered, ex.envmaps[k]) +
+                    const auto rendered = renderEnvmapTorch(
+                        out.cubes, ex.inputs.layout, ex.envmapPositions[k], config.trainEnvWidth,
+                        config.trainEnvHeight, config.samplesPerLevel);
+                    envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) +
+                              hdrImageLoss(rendered, ex.envmaps[k]) +
                               kIrradianceWeight * irradianceLoss(rendered, ex.envmaps[k]);
                     if (k == e) env = rendered;
                 }
@@ -469,15 +533,18 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                 }
                 if (!direct) loss = loss + kSparsityWeight * sparsityLoss(out.cubes);
                 if (stage >= 3) {
-                    // Discriminator step on real vs (detached) predicted envmaps, then the generator
-                    // term. Data-parallel: one step per example of the rank's slice, on the mean of
-                    // the ranks' gradients.
+                    // Discriminator step on real vs (detached) predicted envmaps, then the
+                    // generator term. Data-parallel: one step per example of the rank's slice, on
+                    // the mean of the ranks' gradients.
                     s.discriminatorOptimizer->zero_grad();
-                    discLoss = discriminatorHingeLoss(s.discriminator(srgbEncodeTensor(gt)),
-                                                      s.discriminator(srgbEncodeTensor(env.detach())));
+                    discLoss =
+                        discriminatorHingeLoss(s.discriminator(srgbEncodeTensor(gt)),
+                                               s.discriminator(srgbEncodeTensor(env.detach())));
                     (world > 1 ? discLoss / world : discLoss).backward();
                     zeroNonFiniteGradients(s.discriminator->parameters());
-                    if (comm) comm->allReduceGradients(s.discriminator->parameters(), "the discriminator's all-reduce");
+                    if (comm)
+                        comm->allReduceGradients(s.discriminator->parameters(),
+                                                 "the discriminator's all-reduce");
                     s.discriminatorOptimizer->step();
                     advLoss = generatorHingeLoss(s.discriminator(srgbEncodeTensor(env)));
                     loss = loss + kAdversarialWeight * advLoss;
@@ -487,7 +554,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             clock = std::chrono::steady_clock::now();
             (o.batch > 1 ? loss / o.batch : loss).backward();
             window.secondsBackward += secondsSince(clock);
-            const torch::Tensor* terms[7] = {&loss, &viewLoss, &envLoss, &advLoss, &discLoss, &voxLoss, &depthLoss};
+            const torch::Tensor* terms[7] = {&loss,     &viewLoss, &envLoss,  &advLoss,
+                                             &discLoss, &voxLoss,  &depthLoss};
             for (int t = 0; t < 7; ++t) sums[t] += terms[t]->item<double>() / o.batch;
         }
         auto clock = std::chrono::steady_clock::now();
@@ -535,26 +603,35 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             row.secondsBackward = window.secondsBackward / windowCount;
             row.secondsAllReduce = window.secondsAllReduce / windowCount;
             row.learningRate = lr;
-            row.itPerSecond = windowCount / std::chrono::duration<double>(now - windowStart).count();
-            if (validateNow && root) std::tie(row.valPsnr, row.valAngular) = validate(s.average, validationScenes, device);
+            row.itPerSecond =
+                windowCount / std::chrono::duration<double>(now - windowStart).count();
+            if (validateNow && root)
+                std::tie(row.valPsnr, row.valAngular) =
+                    validate(s.average, validationScenes, device);
             const double elapsed = std::chrono::duration<double>(now - runStart).count();
             const double eta = elapsed / std::max(1, done - firstIteration) * (o.iterations - done);
-            progress << "train: it " << done << "/" << o.iterations << "  stage " << stage << "  loss " << std::fixed
-                     << std::setprecision(4) << row.total << " (view " << row.view << ", envmap " << row.envmap;
-            if (direct) progress << ", voxel " << row.voxel << ", depth " << row.depth;
-            else progress << ", adv " << row.adversarial;
-            progress << ")  " << std::setprecision(2) << row.itPerSecond << " it/s (data " << row.secondsData
-                     << " s, forward " << row.secondsForward << " s, backward " << row.secondsBackward << " s";
+            progress << "train: it " << done << "/" << o.iterations << "  stage " << stage
+                     << "  loss " << std::fixed << std::setprecision(4) << row.total << " (view "
+                     << row.view << ", envmap " << row.envmap;
+            if (direct)
+                progress << ", voxel " << row.voxel << ", depth " << row.depth;
+            else
+                progress << ", adv " << row.adversarial;
+            progress << ")  " << std::setprecision(2) << row.itPerSecond << " it/s (data "
+                     << row.secondsData << " s, forward " << row.secondsForward << " s, backward "
+                     << row.secondsBackward << " s";
             if (comm) progress << ", all-reduce " << row.secondsAllReduce << " s";
-            progress << ")  ETA "
-                     << formatDuration(eta);
-            if (validateNow) progress << "  val PSNR " << row.valPsnr << " dB, angular " << row.valAngular << " deg";
+            progress << ")  ETA " << formatDuration(eta);
+            if (validateNow)
+                progress << "  val PSNR " << row.valPsnr << " dB, angular " << row.valAngular
+                         << " deg";
             progress << std::defaultfloat << std::endl;
             s.log.push_back(row);
             window = LogRow{};
             windowCount = 0;
             windowStart = std::chrono::steady_clock::now();
-            if (root) writeLog(o, s.log);  // every progress line, so a resumed run keeps whole curves
+            if (root)
+                writeLog(o, s.log);  // every progress line, so a resumed run keeps whole curves
         }
         if (done % o.checkpointEvery == 0 || done == o.iterations || done == sittingEnd) {
             s.iteration = done;
@@ -563,7 +640,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         }
     }
     if (sittingEnd < o.iterations) {
-        progress << "train: stopped at iteration " << sittingEnd << " of " << o.iterations << " (--stop-after); "
+        progress << "train: stopped at iteration " << sittingEnd << " of " << o.iterations
+                 << " (--stop-after); "
                  << "the same command resumes from " << o.checkpointPath() << "\n";
         return;
     }
@@ -571,7 +649,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (!root) return;
     saveModel(s.average, o.out, o.halfModel);
     writeLog(o, s.log);
-    progress << "train: wrote " << o.out << " (log " << o.out << ".csv, curves " << o.out << ".png)\n";
+    progress << "train: wrote " << o.out << " (log " << o.out << ".csv, curves " << o.out
+             << ".png)\n";
 }
 
 }  // namespace lh::net

@@ -10,11 +10,11 @@
 //     stage 2 (to 90%): the envmap losses added (and a small sparsity prior on the cubes);
 //     stage 3 (last 10%): the PatchGAN adversarial loss added (weight 0.1).
 // Image losses: the paper's VGG-19 perceptual loss with --vgg FILE, else the substitute of
-// losses.h. Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1 (or --batch);
-// non-finite gradients zeroed; gradients clipped to a global norm of 5; the model written is
-// the moving average of the weights (--average-decay). Each iteration draws
-// its example and augmentation (net/augment.h) from (seed, iteration) alone, so a resumed
-// run repeats exactly what an uninterrupted one would have done.
+// losses.h. Adam at --lr, divided by 10 for the last 20% (the paper's 1e-4 -> 1e-5); batch 1 (or
+// --batch); non-finite gradients zeroed; gradients clipped to a global norm of 5; the model written
+// is the moving average of the weights (--average-decay). Each iteration draws its example and
+// augmentation (net/augment.h) from (seed, iteration) alone, so a resumed run repeats exactly what
+// an uninterrupted one would have done.
 #pragma once
 
 #include "net/config.h"
@@ -27,16 +27,17 @@
 namespace lh::net {
 
 struct TrainOptions {
-    std::string data;          // training split (lighthouse synth --split train)
-    std::string validation;    // held-out scenes; empty: the last 5% of `data`, not trained on
+    std::string data;        // training split (lighthouse synth --split train)
+    std::string validation;  // held-out scenes; empty: the last 5% of `data`, not trained on
     std::string config = "standard";
     std::string out = "model.pt";  // model; the log is OUT.csv/.png
     std::string checkpoint;        // resumable state; empty: OUT.checkpoint
-    std::string init;              // model to fine-tune from (fresh optimiser) when no checkpoint exists
+    std::string init;  // model to fine-tune from (fresh optimiser) when no checkpoint exists
     std::string supervision = "direct";  // "direct" or "paper" (see above)
     bool augment = true;
-    bool halfModel = true;         // OUT in half precision (the checkpoint keeps float32)
-    int stopAfter = 0;             // end this sitting after this many iterations (checkpointed); 0: run to the end
+    bool halfModel = true;  // OUT in half precision (the checkpoint keeps float32)
+    int stopAfter =
+        0;  // end this sitting after this many iterations (checkpointed); 0: run to the end
     std::optional<NetConfig> configOverride;  // sizes other than the named configurations (tests)
     int iterations = 12000;
     double learningRate = 3e-4;
@@ -47,9 +48,9 @@ struct TrainOptions {
     unsigned long long seed = 1;
     std::string device = "cpu";
     int threads = 0;
-    bool resume = true;        // continue from OUT.checkpoint when it exists
-    std::string vggWeights;    // VGG-19 weights (net/vgg_loss.h): the paper's perceptual loss
-                               // instead of the substitute
+    bool resume = true;      // continue from OUT.checkpoint when it exists
+    std::string vggWeights;  // VGG-19 weights (net/vgg_loss.h): the paper's perceptual loss
+                             // instead of the substitute
     // Examples per iteration, over all ranks; each loss is divided by it, so the gradient is
     // the batch's mean. Example j of iteration i draws from (seed, i, j), example 0 from
     // (seed, i) alone, as with batch 1.
@@ -63,8 +64,10 @@ struct TrainOptions {
     // resumes from the same checkpoint (a shared file system).
     DistributedOptions distributed;
 
-    void validate() const;     // throws InputError
-    std::string checkpointPath() const { return checkpoint.empty() ? out + ".checkpoint" : checkpoint; }
+    void validate() const;  // throws InputError
+    std::string checkpointPath() const {
+        return checkpoint.empty() ? out + ".checkpoint" : checkpoint;
+    }
 };
 
 // Runs training, writing progress lines to `progress`.

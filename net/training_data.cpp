@@ -26,7 +26,8 @@ std::vector<std::uint8_t> observedMask(const fs::path& dir, const EnvmapSample& 
                                        std::optional<ImageRGB>& depth) {
     const std::string stem = fs::path(sample.file).stem().string();
     const fs::path maskFile = dir / dataset::maskPng(stem);
-    if (fs::is_regular_file(maskFile)) return loadMask(maskFile.string(), envmap.width, envmap.height);
+    if (fs::is_regular_file(maskFile))
+        return loadMask(maskFile.string(), envmap.width, envmap.height);
 
     const fs::path positionFile = dir / sample.positionFile;
     if (!depth)
@@ -41,8 +42,8 @@ std::vector<std::uint8_t> observedMask(const fs::path& dir, const EnvmapSample& 
                         "ref_depth.exr (or depth.exr) to compute the observed mask from");
     const ImageRGB positions = readImage(positionFile.string());
     if (positions.width != envmap.width || positions.height != envmap.height)
-        throw InputError("'" + positionFile.string() + "' is " + std::to_string(positions.width) + "x" +
-                         std::to_string(positions.height) + " but its envmap is " +
+        throw InputError("'" + positionFile.string() + "' is " + std::to_string(positions.width) +
+                         "x" + std::to_string(positions.height) + " but its envmap is " +
                          std::to_string(envmap.width) + "x" + std::to_string(envmap.height));
     try {
         return observedMaskFromDepth(positions, reference, *depth);
@@ -55,7 +56,8 @@ std::vector<std::uint8_t> observedMask(const fs::path& dir, const EnvmapSample& 
 
 std::vector<std::string> listExamples(const std::string& dataDir) {
     if (!fs::is_directory(dataDir))
-        throw FileError("data directory '" + dataDir + "' not found (make one with 'lighthouse synth')");
+        throw FileError("data directory '" + dataDir +
+                        "' not found (make one with 'lighthouse synth')");
     std::vector<std::string> out;
     for (const auto& entry : fs::directory_iterator(dataDir))
         // Hidden directories are examples still being written by `synth` (".ID.partial").
@@ -64,7 +66,9 @@ std::vector<std::string> listExamples(const std::string& dataDir) {
             out.push_back(entry.path().string());
     std::sort(out.begin(), out.end());
     if (out.empty())
-        throw FileError("'" + dataDir + "' holds no examples (sub-directories with cameras.json); make some with 'lighthouse synth'");
+        throw FileError("'" + dataDir +
+                        "' holds no examples (sub-directories with cameras.json); make some with "
+                        "'lighthouse synth'");
     return out;
 }
 
@@ -74,14 +78,16 @@ TrainingExample loadExample(const std::string& directory, bool withMasks) {
     ex.directory = directory;
     ex.cameras = loadCamerasFile((dir / dataset::kCameras).string());
     if (!ex.cameras.src || !ex.cameras.tgt || !ex.cameras.near || !ex.cameras.far)
-        throw FileError("'" + (dir / dataset::kCameras).string() + "' lacks src, tgt, near or far: not a training example");
+        throw FileError("'" + (dir / dataset::kCameras).string() +
+                        "' lacks src, tgt, near or far: not a training example");
     ex.ref = readImage((dir / dataset::viewPng("ref")).string());
     ex.src = readImage((dir / dataset::viewPng("src")).string());
     ex.tgt = readImage((dir / dataset::viewPng("tgt")).string());
     std::optional<ImageRGB> depth;  // read when the first mask must be computed
     for (const auto& e : ex.cameras.envmaps) {
         ex.envmaps.push_back(readImage((dir / e.file).string()));
-        if (withMasks) ex.masks.push_back(observedMask(dir, e, ex.envmaps.back(), ex.cameras.ref, depth));
+        if (withMasks)
+            ex.masks.push_back(observedMask(dir, e, ex.envmaps.back(), ex.cameras.ref, depth));
     }
     if (ex.envmaps.empty()) throw FileError("'" + directory + "' has no ground-truth envmaps");
     return ex;

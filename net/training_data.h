@@ -15,8 +15,8 @@ namespace lh::net {
 
 struct TrainingExample {
     std::string directory;
-    CamerasFile cameras;  // ref, src, tgt, near, far, envmap positions
-    ImageRGB ref, src, tgt;  // linear
+    CamerasFile cameras;                           // ref, src, tgt, near, far, envmap positions
+    ImageRGB ref, src, tgt;                        // linear
     std::vector<ImageRGB> envmaps;                 // linear HDR, one per cameras.envmaps entry
     std::vector<std::vector<std::uint8_t>> masks;  // observed-content masks (if requested)
 };

@@ -26,7 +26,8 @@ PreActConvImpl::PreActConvImpl(int in, int out, int stride) {
 }
 
 torch::Tensor PreActConvImpl::forward(const torch::Tensor& x) {
-    return fastConvolution(torch::relu(norm(x)), conv->weight, conv->bias, conv->options.stride()->at(0), 1);
+    return fastConvolution(torch::relu(norm(x)), conv->weight, conv->bias,
+                           conv->options.stride()->at(0), 1);
 }
 
 ResidualPairImpl::ResidualPairImpl(int channels) {
@@ -37,18 +38,22 @@ ResidualPairImpl::ResidualPairImpl(int channels) {
 torch::Tensor ResidualPairImpl::forward(const torch::Tensor& x) { return x + second(first(x)); }
 
 UNet3dImpl::UNet3dImpl(int inChannels, int outChannels, int w) {
-    stem = register_module("stem", torch::nn::Conv3d(torch::nn::Conv3dOptions(inChannels, w, 3).padding(1)));
+    stem = register_module(
+        "stem", torch::nn::Conv3d(torch::nn::Conv3dOptions(inChannels, w, 3).padding(1)));
     const int enc[5] = {w, 2 * w, 4 * w, 8 * w, 16 * w};
     const int dec[4] = {8 * w, 4 * w, 2 * w, 2 * w};
     encRes.push_back(register_module("enc_res0", ResidualPair(enc[0])));
     for (int s = 0; s < 4; ++s) {
-        down.push_back(register_module("down" + std::to_string(s), PreActConv(enc[s], enc[s + 1], 2)));
-        encRes.push_back(register_module("enc_res" + std::to_string(s + 1), ResidualPair(enc[s + 1])));
+        down.push_back(
+            register_module("down" + std::to_string(s), PreActConv(enc[s], enc[s + 1], 2)));
+        encRes.push_back(
+            register_module("enc_res" + std::to_string(s + 1), ResidualPair(enc[s + 1])));
     }
     int below = enc[4];
     for (int s = 0; s < 4; ++s) {
         const int skip = enc[3 - s];
-        merge.push_back(register_module("merge" + std::to_string(s), PreActConv(below + skip, dec[s], 1)));
+        merge.push_back(
+            register_module("merge" + std::to_string(s), PreActConv(below + skip, dec[s], 1)));
         decRes.push_back(register_module("dec_res" + std::to_string(s), ResidualPair(dec[s])));
         below = dec[s];
     }
@@ -65,9 +70,10 @@ torch::Tensor UNet3dImpl::forward(const torch::Tensor& x) {
     for (int s = 0; s < 4; ++s) {
         const auto& skip = skips[3 - s];
         // Nearest-neighbour 2x upsampling, sized to the skip exactly.
-        h = F::interpolate(h, F::InterpolateFuncOptions()
-                                  .size(std::vector<int64_t>{skip.size(2), skip.size(3), skip.size(4)})
-                                  .mode(torch::kNearest));
+        h = F::interpolate(h,
+                           F::InterpolateFuncOptions()
+                               .size(std::vector<int64_t>{skip.size(2), skip.size(3), skip.size(4)})
+                               .mode(torch::kNearest));
         h = decRes[s](merge[s](torch::cat({h, skip}, 1)));
     }
     return head(h);

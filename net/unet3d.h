@@ -41,10 +41,10 @@ struct UNet3dImpl : torch::nn::Module {
     torch::Tensor forward(const torch::Tensor& x);
 
     torch::nn::Conv3d stem{nullptr};
-    std::vector<PreActConv> down;        // 4 stride-2 convolutions
-    std::vector<ResidualPair> encRes;    // 5: after the stem and after each down
-    std::vector<PreActConv> merge;       // 4: after upsampling + skip concatenation
-    std::vector<ResidualPair> decRes;    // 4
+    std::vector<PreActConv> down;      // 4 stride-2 convolutions
+    std::vector<ResidualPair> encRes;  // 5: after the stem and after each down
+    std::vector<PreActConv> merge;     // 4: after upsampling + skip concatenation
+    std::vector<ResidualPair> decRes;  // 4
     PreActConv head{nullptr};
 };
 TORCH_MODULE(UNet3d);

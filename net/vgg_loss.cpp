@@ -12,11 +12,13 @@ namespace lh::net {
 
 namespace F = torch::nn::functional;
 
-const int VggPerceptualLoss::kConvIndices[16] = {0, 2, 5, 7, 10, 12, 14, 16, 19, 21, 23, 25, 28, 30, 32, 34};
+const int VggPerceptualLoss::kConvIndices[16] = {0,  2,  5,  7,  10, 12, 14, 16,
+                                                 19, 21, 23, 25, 28, 30, 32, 34};
 
 namespace {
 
-constexpr int kWidths[16] = {64, 64, 128, 128, 256, 256, 256, 256, 512, 512, 512, 512, 512, 512, 512, 512};
+constexpr int kWidths[16] = {64,  64,  128, 128, 256, 256, 256, 256,
+                             512, 512, 512, 512, 512, 512, 512, 512};
 // Max-pooling follows these convolutions (torchvision's layout).
 bool poolAfter(int conv) { return conv == 1 || conv == 3 || conv == 7 || conv == 11; }
 // Features taken after these convolutions' ReLU: conv1_2, conv2_2, conv3_2, conv4_2, conv5_2.
@@ -28,7 +30,8 @@ constexpr double kTermWeights[6] = {1.0, 1.0 / 2.6, 1.0 / 4.8, 1.0 / 3.7, 1.0 / 
 
 VggPerceptualLoss::VggPerceptualLoss(const std::string& path, const torch::Device& device) {
     if (!std::filesystem::is_regular_file(path))
-        throw FileError("VGG-19 weights '" + path + "' not found (see net/vgg_loss.h for how to make the file)");
+        throw FileError("VGG-19 weights '" + path +
+                        "' not found (see net/vgg_loss.h for how to make the file)");
     torch::jit::Module archive;
     try {
         archive = torch::jit::load(path, torch::kCPU);
@@ -43,9 +46,11 @@ VggPerceptualLoss::VggPerceptualLoss(const std::string& path, const torch::Devic
         const std::string stem = std::to_string(kConvIndices[c]);
         const auto w = buffers.find(stem + "_weight"), b = buffers.find(stem + "_bias");
         if (w == buffers.end() || b == buffers.end())
-            throw FileError("'" + path + "' lacks buffer " + stem + "_weight or " + stem + "_bias of VGG-19's features");
+            throw FileError("'" + path + "' lacks buffer " + stem + "_weight or " + stem +
+                            "_bias of VGG-19's features");
         if (w->second.sizes() != torch::IntArrayRef({kWidths[c], in, 3, 3}))
-            throw FileError("'" + path + "': buffer " + stem + "_weight has the wrong shape for VGG-19");
+            throw FileError("'" + path + "': buffer " + stem +
+                            "_weight has the wrong shape for VGG-19");
         weights_.push_back(w->second.to(device, torch::kFloat32));
         biases_.push_back(b->second.to(device, torch::kFloat32));
         in = kWidths[c];
@@ -62,7 +67,9 @@ torch::Tensor VggPerceptualLoss::operator()(const torch::Tensor& predictedLinear
     int tap = 0;
     for (int c = 0; c < 16 && tap < 5; ++c) {
         const auto conv = [&](const torch::Tensor& x) {
-            return torch::relu(F::conv2d(x, weights_[size_t(c)], F::Conv2dFuncOptions().bias(biases_[size_t(c)]).padding(1)));
+            return torch::relu(
+                F::conv2d(x, weights_[size_t(c)],
+                          F::Conv2dFuncOptions().bias(biases_[size_t(c)]).padding(1)));
         };
         hp = conv(hp);
         ht = conv(ht);

@@ -27,7 +27,8 @@ public:
     // Throws FileError naming the file and the missing or mis-shaped buffer.
     VggPerceptualLoss(const std::string& weightsPath, const torch::Device& device);
     // Linear images [1, 3, H, W] (compared after sRGB encoding and ImageNet normalisation).
-    torch::Tensor operator()(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear) const;
+    torch::Tensor operator()(const torch::Tensor& predictedLinear,
+                             const torch::Tensor& targetLinear) const;
 
     // torchvision's layer indices of the 16 convolutions of vgg19().features.
     static const int kConvIndices[16];

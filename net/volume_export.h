@@ -20,6 +20,7 @@ LightingVolume cubesToVolume(const std::vector<torch::Tensor>& cubes, const Volu
                              float minAlpha = kMinStoredVoxelAlpha);
 
 // mpi: [1, 4, D, H, W] linear RGB + alpha, planes far to near at `depths`.
-Mpi tensorToMpi(const torch::Tensor& mpi, const PinholeCamera& camera, const std::vector<double>& depths);
+Mpi tensorToMpi(const torch::Tensor& mpi, const PinholeCamera& camera,
+                const std::vector<double>& depths);
 
 }  // namespace lh::net

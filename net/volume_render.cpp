@@ -15,7 +15,8 @@ torch::Tensor envmapDirections(int width, int height) {
     const auto theta = (torch::arange(width, opts) + 0.5) * (2.0 * M_PI / width) - M_PI;
     const auto g = torch::meshgrid({phi, theta}, "ij");
     const auto sinPhi = torch::sin(g[0]);
-    return torch::stack({sinPhi * torch::sin(g[1]), -torch::cos(g[0]), sinPhi * torch::cos(g[1])}, -1);
+    return torch::stack({sinPhi * torch::sin(g[1]), -torch::cos(g[0]), sinPhi * torch::cos(g[1])},
+                        -1);
 }
 
 namespace {
@@ -62,12 +63,13 @@ torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const V
         for (int finer = k + 1; finer < levels; ++finer)
             owned = owned & ~insideBox(points, layout.box(finer));
 
-        const auto grid = ((points - torch::tensor({box.min.x(), box.min.y(), box.min.z()}, torch::kFloat64)) *
-                               (2.0 / layout.side(k)) -
-                           1.0)
-                              .to(torch::kFloat32)
-                              .view({1, 1, -1, samples, 3})
-                              .to(device);
+        const auto grid =
+            ((points - torch::tensor({box.min.x(), box.min.y(), box.min.z()}, torch::kFloat64)) *
+                 (2.0 / layout.side(k)) -
+             1.0)
+                .to(torch::kFloat32)
+                .view({1, 1, -1, samples, 3})
+                .to(device);
         const auto cube = cubes[size_t(k)];
         const auto sigma = densityFromAlpha(cube.narrow(1, 3, 1), voxel);
         const auto field = torch::cat({sigma, cube.narrow(1, 0, 3) * sigma}, 1);  // sigma, emission
@@ -79,8 +81,8 @@ torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const V
             sampling.padding_mode(torch::kZeros);
         else
             sampling.padding_mode(torch::kBorder);
-        const auto sampled = F::grid_sample(field, grid, sampling)
-                                 .view({4, -1, samples});  // [4, P, S]
+        const auto sampled =
+            F::grid_sample(field, grid, sampling).view({4, -1, samples});  // [4, P, S]
         const auto mask = owned.to(torch::kFloat32).to(device).unsqueeze(0);
         sigmas.push_back(sampled.narrow(0, 0, 1) * mask);
         emissions.push_back(sampled.narrow(0, 1, 3) * mask);
@@ -88,7 +90,8 @@ torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const V
     // Composite every level's shells in order of distance.
     std::vector<int64_t> order(distances.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = int64_t(i);
-    std::stable_sort(order.begin(), order.end(), [&](int64_t a, int64_t b) { return distances[a] < distances[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int64_t a, int64_t b) { return distances[a] < distances[b]; });
     std::vector<float> sortedDt(order.size());
     for (size_t i = 0; i < order.size(); ++i) sortedDt[i] = float(thicknesses[size_t(order[i])]);
     const auto index = torch::tensor(order, torch::kInt64).to(device);
@@ -101,7 +104,8 @@ torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const V
     // (1 - exp(-tau)) / sigma = dt (1 - exp(-tau)) / tau, stable as tau -> 0.
     const auto smallTau = tau < 1e-4;
     const auto safeTau = torch::where(smallTau, torch::ones_like(tau), tau);
-    const auto integral = torch::where(smallTau, dt * (1.0 - 0.5 * tau), dt * (-torch::expm1(-safeTau)) / safeTau);
+    const auto integral =
+        torch::where(smallTau, dt * (1.0 - 0.5 * tau), dt * (-torch::expm1(-safeTau)) / safeTau);
     const auto radiance = (transmittanceBefore * integral * emission).sum(2);  // [3, P]
     return radiance.view({1, 3, height, width});
 }

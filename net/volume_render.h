@@ -1,5 +1,6 @@
 // Differentiable envmap rendering for training, in the density/colour convention of
-// docs/conventions.md#lighting-volume, so that it and the C++ ray marcher integrate the same medium.
+// docs/conventions.md#lighting-volume, so that it and the C++ ray marcher integrate the same
+// medium.
 //
 // Like the paper, each level is sampled on `samplesPerLevel` concentric spheres around the
 // query point, evenly spaced out to the level's farthest corner. Unlike the paper, a sample

@@ -40,15 +40,17 @@ EmbreeScene::~EmbreeScene() {
     if (device_) rtcReleaseDevice(device_);
 }
 
-void EmbreeScene::addMesh(unsigned id, const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices) {
+void EmbreeScene::addMesh(unsigned id, const std::vector<Vec3d>& positions,
+                          const std::vector<uint32_t>& indices) {
     if (indices.size() < 3) return;
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), positions.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
     for (std::size_t k = 0; k < positions.size(); ++k)
         for (int c = 0; c < 3; ++c) v[3 * k + c] = float(positions[k][c]);
-    auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                             3 * sizeof(unsigned), indices.size() / 3));
+    auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
+                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                             indices.size() / 3));
     std::copy(indices.begin(), indices.end(), t);
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(scene_, geom, id);
@@ -57,7 +59,8 @@ void EmbreeScene::addMesh(unsigned id, const std::vector<Vec3d>& positions, cons
 
 void EmbreeScene::commit() { rtcCommitScene(scene_); }
 
-EmbreeHit EmbreeScene::intersect(const Vec3d& origin, const Vec3d& dir, double tMin, double tMax) const {
+EmbreeHit EmbreeScene::intersect(const Vec3d& origin, const Vec3d& dir, double tMin,
+                                 double tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;

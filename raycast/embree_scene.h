@@ -16,9 +16,9 @@ namespace lh {
 struct EmbreeHit {
     bool hit = false;
     double t = std::numeric_limits<double>::infinity();
-    unsigned geometry = 0;   // the id given to addMesh
-    unsigned triangle = 0;   // triangle index within that mesh
-    double u = 0, v = 0;     // barycentric coordinates of the hit (vertex 1 and 2 weights)
+    unsigned geometry = 0;  // the id given to addMesh
+    unsigned triangle = 0;  // triangle index within that mesh
+    double u = 0, v = 0;    // barycentric coordinates of the hit (vertex 1 and 2 weights)
     Vec3d geometricNormal{0.0, 0.0, 0.0};  // unnormalised, as Embree reports it
 };
 
@@ -30,7 +30,8 @@ public:
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
     // Adds a triangle mesh with geometry id `id`; call commit() after the last one.
-    void addMesh(unsigned id, const std::vector<Vec3d>& positions, const std::vector<uint32_t>& indices);
+    void addMesh(unsigned id, const std::vector<Vec3d>& positions,
+                 const std::vector<uint32_t>& indices);
     void commit();
 
     // Closest hit along a unit direction within (tMin, tMax). Thread-safe after commit().

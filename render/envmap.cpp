@@ -31,8 +31,7 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
                       const EnvmapOptions& options) {
     options.validate();
     for (int a = 0; a < 3; ++a)
-        if (!std::isfinite(position[a]))
-            throw InputError("envmap position must be finite");
+        if (!std::isfinite(position[a])) throw InputError("envmap position must be finite");
     ImageRGB image(options.width, options.height);
     // envmapPixelDirection factored: one sincos per column and per row, not per pixel.
     std::vector<double> sinTheta(options.width), cosTheta(options.width);
@@ -47,30 +46,32 @@ ImageRGB renderEnvmap(const RenderVolume& volume, const Vec3d& position,
     std::optional<FirstMediumMap> firstMedium;
     if (options.startAtFirstMedium && options.march.cellNodes > 0)
         firstMedium.emplace(volume, position, options.width, options.height);
-    tbb::parallel_for(tbb::blocked_range<int>(0, options.height),
-                      [&](const tbb::blocked_range<int>& rows) {
-                          // Where each ray of these rows first meets the medium (0: from the origin).
-                          std::vector<float> starts(std::size_t(rows.size()) * options.width, 0.f);
-                          if (firstMedium) firstMedium->fillRows(rows.begin(), rows.end(), starts.data());
-                          for (int r = rows.begin(); r != rows.end(); ++r) {
-                              const double phi = envmapPolarAngle(r + 0.5, options.height);
-                              const double sinPhi = std::sin(phi), cosPhi = std::cos(phi);
-                              const float* rowStarts = starts.data() + std::size_t(r - rows.begin()) * options.width;
-                              for (int c = 0; c < options.width; ++c) {
-                                  float* px = image.at(c, r);
-                                  // A ray that never meets the medium sees the background (most
-                                  // of an envmap's rays in a sparse room: keep them cheap).
-                                  if (std::isinf(rowStarts[c])) {
-                                      std::copy(background, background + 3, px);
-                                      continue;
-                                  }
-                                  const Vec3d d = envmapDirectionFromAngles(sinPhi, cosPhi, sinTheta[c], cosTheta[c]);
-                                  const RayResult ray = marchRay(volume, origin, d, options.march, rowStarts[c]);
-                                  for (int i = 0; i < 3; ++i)
-                                      px[i] = float(ray.radiance[i] + ray.transmittance * options.background[i]);
-                              }
-                          }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, options.height), [&](const tbb::blocked_range<int>& rows) {
+            // Where each ray of these rows first meets the medium (0: from the origin).
+            std::vector<float> starts(std::size_t(rows.size()) * options.width, 0.f);
+            if (firstMedium) firstMedium->fillRows(rows.begin(), rows.end(), starts.data());
+            for (int r = rows.begin(); r != rows.end(); ++r) {
+                const double phi = envmapPolarAngle(r + 0.5, options.height);
+                const double sinPhi = std::sin(phi), cosPhi = std::cos(phi);
+                const float* rowStarts =
+                    starts.data() + std::size_t(r - rows.begin()) * options.width;
+                for (int c = 0; c < options.width; ++c) {
+                    float* px = image.at(c, r);
+                    // A ray that never meets the medium sees the background (most
+                    // of an envmap's rays in a sparse room: keep them cheap).
+                    if (std::isinf(rowStarts[c])) {
+                        std::copy(background, background + 3, px);
+                        continue;
+                    }
+                    const Vec3d d =
+                        envmapDirectionFromAngles(sinPhi, cosPhi, sinTheta[c], cosTheta[c]);
+                    const RayResult ray = marchRay(volume, origin, d, options.march, rowStarts[c]);
+                    for (int i = 0; i < 3; ++i)
+                        px[i] = float(ray.radiance[i] + ray.transmittance * options.background[i]);
+                }
+            }
+        });
     return image;
 }
 

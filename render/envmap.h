@@ -1,4 +1,5 @@
-// Rendering equirectangular environment maps (docs/conventions.md#envmap-layout) from a lighting volume.
+// Rendering equirectangular environment maps (docs/conventions.md#envmap-layout) from a lighting
+// volume.
 #pragma once
 
 #include "image/image.h"
@@ -7,7 +8,7 @@
 namespace lh {
 
 struct EnvmapOptions {
-    int width = 240;   // W = 2 H
+    int width = 240;  // W = 2 H
     int height = 120;
     MarchOptions march;
     // Radiance behind the volume (linear RGB): each pixel adds transmittance x background.

@@ -16,7 +16,8 @@ namespace {
 using Footprint = FirstMediumMap::Footprint;
 
 bool containsOrigin(const Footprint& b) {
-    return b.lo[0] <= 0 && b.hi[0] >= 0 && b.lo[1] <= 0 && b.hi[1] >= 0 && b.lo[2] <= 0 && b.hi[2] >= 0;
+    return b.lo[0] <= 0 && b.hi[0] >= 0 && b.lo[1] <= 0 && b.hi[1] >= 0 && b.lo[2] <= 0 &&
+           b.hi[2] >= 0;
 }
 
 // atan2(y, x) within 1.2e-5 radians, modulo 2 pi (a degree-9 odd polynomial for atan on
@@ -27,7 +28,8 @@ double roughAtan2(double y, double x) {
     const double ax = std::abs(x), ay = std::abs(y);
     if (ax == 0.0 && ay == 0.0) return 0.0;
     const double a = std::min(ax, ay) / std::max(ax, ay), s = a * a;
-    double r = a * (0.9998660 + s * (-0.3302995 + s * (0.1801410 + s * (-0.0851330 + s * 0.0208351))));
+    double r =
+        a * (0.9998660 + s * (-0.3302995 + s * (0.1801410 + s * (-0.0851330 + s * 0.0208351))));
     if (ay > ax) r = 0.5 * M_PI - r;
     if (x < 0.0) r = M_PI - r;
     return y < 0.0 ? -r : r;
@@ -53,9 +55,11 @@ bool placeOnEnvmap(Footprint& f, int width, int height) {
     // origin (falls below). Over the box, u and rho lie in [uLo, uHi] and [rhoLo, rhoHi], so
     // the extremes are at these corners of that rectangle: a bound, not always attained.
     const double uLo = -f.hi[1], uHi = -f.lo[1];
-    const double gapX = std::max({f.lo[0], -f.hi[0], 0.0}), gapZ = std::max({f.lo[2], -f.hi[2], 0.0});
+    const double gapX = std::max({f.lo[0], -f.hi[0], 0.0}),
+                 gapZ = std::max({f.lo[2], -f.hi[2], 0.0});
     const double farX = std::max(-f.lo[0], f.hi[0]), farZ = std::max(-f.lo[2], f.hi[2]);
-    const double rhoLo = std::sqrt(gapX * gapX + gapZ * gapZ), rhoHi = std::sqrt(farX * farX + farZ * farZ);
+    const double rhoLo = std::sqrt(gapX * gapX + gapZ * gapZ),
+                 rhoHi = std::sqrt(farX * farX + farZ * farZ);
     const double phiLo = roughAtan2(uHi > 0.0 ? rhoLo : rhoHi, uHi) - kAtanError;
     const double phiHi = roughAtan2(uLo > 0.0 ? rhoHi : rhoLo, uLo) + kAtanError;
     f.rowLo = std::max(0, int(std::ceil(phiLo * rowsPerRadian - 0.5)));
@@ -73,8 +77,10 @@ bool placeOnEnvmap(Footprint& f, int width, int height) {
                 below = std::min(below, d), above = std::max(above, d);
             }
         // Column c's azimuth is (c + 0.5) / columnsPerRadian - pi (envmap_layout.h).
-        f.columnLo = int(std::ceil((middle + below - 2 * kAtanError + M_PI) * columnsPerRadian - 0.5));
-        f.columnHi = int(std::floor((middle + above + 2 * kAtanError + M_PI) * columnsPerRadian - 0.5));
+        f.columnLo =
+            int(std::ceil((middle + below - 2 * kAtanError + M_PI) * columnsPerRadian - 0.5));
+        f.columnHi =
+            int(std::floor((middle + above + 2 * kAtanError + M_PI) * columnsPerRadian - 0.5));
         if (f.columnHi - f.columnLo + 1 >= width) f.columnLo = 0, f.columnHi = width - 1;
         if (f.columnHi < 0) f.columnLo += width, f.columnHi += width;
         if (f.columnLo >= width) f.columnLo -= width, f.columnHi -= width;
@@ -85,7 +91,8 @@ bool placeOnEnvmap(Footprint& f, int width, int height) {
 
 }  // namespace
 
-FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, int width, int height)
+FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, int width,
+                               int height)
     : width_(width), height_(height) {
     // The volume's medium boxes (render/medium_boxes.h) relative to the origin, each with the
     // distance to its nearest point.
@@ -105,7 +112,8 @@ FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, 
     // The reciprocals of the renderer's per-row and per-column factors of a direction
     // (envmap.cpp): a direction's are (1/sinPhi 1/sinTheta, -1/cosPhi, 1/sinPhi 1/cosTheta).
     // They are finite for the layout's pixel centres; were one not, no ray would be skipped.
-    perSinTheta_.resize(width), perCosTheta_.resize(width), perSinPhi_.resize(height), perCosPhi_.resize(height);
+    perSinTheta_.resize(width), perCosTheta_.resize(width), perSinPhi_.resize(height),
+        perCosPhi_.resize(height);
     for (int c = 0; c < width; ++c) {
         const double theta = envmapAzimuth(c + 0.5, width);
         perSinTheta_[c] = 1.0 / std::sin(theta), perCosTheta_[c] = 1.0 / std::cos(theta);
@@ -118,22 +126,27 @@ FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, 
         return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
     };
     if (!volume.mediumBoxesValid() || std::any_of(boxes.begin(), boxes.end(), containsOrigin) ||
-        !(finite(perSinTheta_) && finite(perCosTheta_) && finite(perSinPhi_) && finite(perCosPhi_))) {
+        !(finite(perSinTheta_) && finite(perCosTheta_) && finite(perSinPhi_) &&
+          finite(perCosPhi_))) {
         skipNothing_ = true;
         return;
     }
     // Nearest boxes first: a pixel whose start is already no farther than a box's nearest point
     // cannot get a nearer one from it, which one comparison tells.
-    std::sort(boxes.begin(), boxes.end(), [](const Footprint& a, const Footprint& b) { return a.nearest < b.nearest; });
+    std::sort(boxes.begin(), boxes.end(),
+              [](const Footprint& a, const Footprint& b) { return a.nearest < b.nearest; });
     // Each box's rectangle of pixels, in parallel (the envmap's other core would otherwise wait
     // on this part), then the boxes that reach some pixel, still nearest first.
     std::vector<char> reaches(boxes.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), 64), [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) reaches[i] = placeOnEnvmap(boxes[i], width, height);
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i)
+                              reaches[i] = placeOnEnvmap(boxes[i], width, height);
+                      });
     for (std::size_t i = 0; i < boxes.size(); ++i)
         if (reaches[i]) footprints_.push_back(boxes[i]);
-    // Per row, the footprints that reach it, nearest first (compressed rows: offsets, then indices).
+    // Per row, the footprints that reach it, nearest first (compressed rows: offsets, then
+    // indices).
     rowStart_.assign(std::size_t(height) + 1, 0);
     for (const Footprint& f : footprints_)
         for (int r = f.rowLo; r <= f.rowHi; ++r) ++rowStart_[std::size_t(r) + 1];
@@ -141,7 +154,8 @@ FirstMediumMap::FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, 
     rowFootprints_.resize(rowStart_.back());
     std::vector<std::size_t> filled(rowStart_.begin(), rowStart_.end() - 1);
     for (std::size_t i = 0; i < footprints_.size(); ++i)
-        for (int r = footprints_[i].rowLo; r <= footprints_[i].rowHi; ++r) rowFootprints_[filled[r]++] = uint32_t(i);
+        for (int r = footprints_[i].rowLo; r <= footprints_[i].rowHi; ++r)
+            rowFootprints_[filled[r]++] = uint32_t(i);
 }
 
 LH_PER_CPU
@@ -164,29 +178,37 @@ void FirstMediumMap::fillRows(int rowBegin, int rowEnd, float* out) const {
         for (std::size_t i = rowStart_[r]; i < rowStart_[std::size_t(r) + 1]; ++i) {
             const Footprint& b = footprints_[rowFootprints_[i]];
             const float nearest = b.nearestBelow;  // skipping on it never loses a nearer entry
-            // The slab of y is the same along a row (y = -cos phi): a row that misses it misses the box.
+            // The slab of y is the same along a row (y = -cos phi): a row that misses it misses the
+            // box.
             const double y0 = b.lo[1] * perCosPhi_[r], y1 = b.hi[1] * perCosPhi_[r];
             const double nearY = std::max(0.0, std::min(y0, y1)), farY = std::max(y0, y1);
             if (nearY > farY) continue;
             const int columnLo = b.columnLo, columnHi = b.columnHi;
             // The azimuth wraps around: [columnLo, columnHi] lies in [-width, 2 width) and is at
             // most width long, so it is at most two runs of [0, width).
-            const int runs[3][2] = {{std::max(columnLo, 0), std::min(columnHi, width - 1)},
-                                    {std::max(columnLo, -width) + width, std::min(columnHi, -1) + width},
-                                    {std::max(columnLo, width) - width, std::min(columnHi, 2 * width - 1) - width}};
+            const int runs[3][2] = {
+                {std::max(columnLo, 0), std::min(columnHi, width - 1)},
+                {std::max(columnLo, -width) + width, std::min(columnHi, -1) + width},
+                {std::max(columnLo, width) - width, std::min(columnHi, 2 * width - 1) - width}};
             for (const auto& run : runs)
-                for (int block = run[0] / kBlock; run[0] <= run[1] && block <= run[1] / kBlock; ++block) {
+                for (int block = run[0] / kBlock; run[0] <= run[1] && block <= run[1] / kBlock;
+                     ++block) {
                     if (rowBlockMax[block] <= nearest) continue;  // nothing here can get nearer
-                    const int first = std::max(run[0], block * kBlock), last = std::min(run[1], block * kBlock + kBlock - 1);
+                    const int first = std::max(run[0], block * kBlock),
+                              last = std::min(run[1], block * kBlock + kBlock - 1);
                     // Branch-free, so that the compiler runs it on several pixels at once.
-                    const double perSinPhi = perSinPhi_[r], loX = b.lo[0], hiX = b.hi[0], loZ = b.lo[2], hiZ = b.hi[2];
+                    const double perSinPhi = perSinPhi_[r], loX = b.lo[0], hiX = b.hi[0],
+                                 loZ = b.lo[2], hiZ = b.hi[2];
                     const double* perSinTheta = perSinTheta_.data();
                     const double* perCosTheta = perCosTheta_.data();
                     for (int c = first; c <= last; ++c) {
-                        const double ix = perSinPhi * perSinTheta[c], iz = perSinPhi * perCosTheta[c];
+                        const double ix = perSinPhi * perSinTheta[c],
+                                     iz = perSinPhi * perCosTheta[c];
                         const double x0 = loX * ix, x1 = hiX * ix, z0 = loZ * iz, z1 = hiZ * iz;
-                        const double tNear = std::max(nearY, std::max(std::min(x0, x1), std::min(z0, z1)));
-                        const double tFar = std::min(farY, std::min(std::max(x0, x1), std::max(z0, z1)));
+                        const double tNear =
+                            std::max(nearY, std::max(std::min(x0, x1), std::min(z0, z1)));
+                        const double tFar =
+                            std::min(farY, std::min(std::max(x0, x1), std::max(z0, z1)));
                         const float below = float(tNear * kBelowOne), current = row[c];
                         const float entry = tNear <= tFar ? below : kInf;
                         row[c] = entry < current ? entry : current;

@@ -21,9 +21,10 @@ namespace lh {
 
 class FirstMediumMap {
 public:
-    // Prepares the boxes' footprints on the width x height envmap (docs/conventions.md#envmap-layout) at
-    // `origin`. If the origin lies inside a box of occupied cells, or a level's axes are not
-    // the world's, or a direction has a component of exactly 0, every start is 0 (no skipping).
+    // Prepares the boxes' footprints on the width x height envmap
+    // (docs/conventions.md#envmap-layout) at `origin`. If the origin lies inside a box of occupied
+    // cells, or a level's axes are not the world's, or a direction has a component of exactly 0,
+    // every start is 0 (no skipping).
     FirstMediumMap(const RenderVolume& volume, const Vec3d& origin, int width, int height);
 
     // Starts of the pixels of rows [rowBegin, rowEnd), row-major into `out` (width floats per
@@ -52,7 +53,7 @@ public:
 
 private:
     int width_, height_;
-    bool skipNothing_ = false;  // every start is 0
+    bool skipNothing_ = false;           // every start is 0
     std::vector<Footprint> footprints_;  // nearest first
     // Row r is reached by footprints_[rowFootprints_[i]] for i in [rowStart_[r], rowStart_[r + 1]).
     std::vector<std::size_t> rowStart_;

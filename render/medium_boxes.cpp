@@ -8,8 +8,8 @@ namespace lh {
 namespace {
 
 // The parts of `box` that no domain in finerDomains[first..] covers, appended to `out`.
-void appendVisibleParts(const MediumBox& box, const std::vector<MediumBox>& finerDomains, std::size_t first,
-                        std::vector<MediumBox>& out) {
+void appendVisibleParts(const MediumBox& box, const std::vector<MediumBox>& finerDomains,
+                        std::size_t first, std::vector<MediumBox>& out) {
     for (std::size_t j = first; j < finerDomains.size(); ++j) {
         const MediumBox& d = finerDomains[j];
         int uncovered = -1, uncoveredCount = 0;  // axes along which d does not span the box
@@ -66,7 +66,8 @@ bool boundMedium(const std::vector<RenderLevel>& levels, std::vector<MediumBox>&
     for (std::size_t k = 0; k < levels.size(); ++k) {
         const RenderLevel& level = levels[k];
         if (level.cellBoxes.empty()) continue;
-        const std::vector<MediumBox> finerDomains(domains.begin() + std::ptrdiff_t(k) + 1, domains.end());
+        const std::vector<MediumBox> finerDomains(domains.begin() + std::ptrdiff_t(k) + 1,
+                                                  domains.end());
         const double margin = 1e-6 * std::cbrt(level.voxelVolume);
         for (int bz = 0; bz < level.brickCount[2]; ++bz)
             for (int by = 0; by < level.brickCount[1]; ++by)

@@ -64,8 +64,8 @@ inline bool addSegment(const RenderSample& s, double t, double dt, double minT, 
 // thick steps (ray_marcher.h). `sample(t)` returns the medium at ray parameter t.
 // Returns false once the transmittance falls below the threshold.
 template <class Sampler>
-bool integrateSpan(const Sampler& sample, double t0, double t1, double stepT,
-                   const MarchOptions& o, RayResult& r) {
+bool integrateSpan(const Sampler& sample, double t0, double t1, double stepT, const MarchOptions& o,
+                   RayResult& r) {
     const double length = t1 - t0;
     if (length <= 0.0) return true;
     const int n = std::max(1, int(std::ceil(length / stepT - 1e-9)));
@@ -85,7 +85,8 @@ bool integrateSpan(const Sampler& sample, double t0, double t1, double stepT,
         for (int j = 0; j < m; ++j) {
             const double subStart = start + j * sub;
             const RenderSample ss = sample(subStart + 0.5 * sub);
-            if (ss.sigma > 0.f && !addSegment(ss, subStart, sub, o.minTransmittance, r)) return false;
+            if (ss.sigma > 0.f && !addSegment(ss, subStart, sub, o.minTransmittance, r))
+                return false;
         }
     }
     return true;
@@ -120,7 +121,8 @@ struct GridWalk {
     double tNext[3];   // t at which the walk crosses the next plane along each axis
     double tDelta[3];  // t between two planes along each axis
 
-    GridWalk(const Vec3d& u0, const Vec3d& qd, const Vec3d& inv, double t0, double size, const int count[3]) {
+    GridWalk(const Vec3d& u0, const Vec3d& qd, const Vec3d& inv, double t0, double size,
+             const int count[3]) {
         for (int a = 0; a < 3; ++a) {
             // The cell holding u(t0), clamped to the grid. Truncating after the clamp is the
             // floor, without the libm call std::floor is on baseline x86-64 (no SSE4.1 round).
@@ -164,7 +166,8 @@ struct GridWalk {
 // `Nodes` is o.cellNodes as a compile-time constant: the loops over the nodes unroll and the
 // rule's nodes and weights become constants (marchRay picks the instance once per ray).
 template <int Nodes, class Sampler>
-bool integrateCellPiece(const Sampler& sample, double ta, double h, const CellQuadrature& cq, RayResult& r) {
+bool integrateCellPiece(const Sampler& sample, double ta, double h, const CellQuadrature& cq,
+                        RayResult& r) {
     static_assert(Nodes >= 1 && Nodes <= 3, "1-3 Gauss nodes per cell");
     const MarchOptions& o = cq.options;
     constexpr GaussRule rule = kGaussRules[Nodes];
@@ -204,14 +207,15 @@ bool integrateCellPiece(const Sampler& sample, double ta, double h, const CellQu
                 ++part.depth;
                 LH_DCHECK(waiting < kMaxHalvings);
                 pending[waiting++] = {part.start + half, half, part.depth};  // back half, later
-                part.length = half;                                           // front half, now
+                part.length = half;                                          // front half, now
                 continue;
             }
         }
         double start = part.start;
         for (int q = 0; q < rule.count; ++q) {
             const double length = part.length * rule.weight[q];
-            if (atNode[q].sigma > 0.f && !addSegment(atNode[q], start, length, o.minTransmittance, r))
+            if (atNode[q].sigma > 0.f &&
+                !addSegment(atNode[q], start, length, o.minTransmittance, r))
                 return false;
             start += length;
         }
@@ -241,7 +245,8 @@ bool marchCells(const float* brick, const uint64_t* mask, const Vec3d& ub, const
             const Vec3d base = ub - Vec3d(cell[0], cell[1], cell[2]);  // cell-local origin
             const auto sample = [&](double tt) {
                 return RenderLevel::sampleCell(corner, float(base[0] + qd[0] * tt),
-                                               float(base[1] + qd[1] * tt), float(base[2] + qd[2] * tt));
+                                               float(base[1] + qd[1] * tt),
+                                               float(base[2] + qd[2] * tt));
             };
             if (!integrateCellPiece<Nodes>(sample, t, tb - t, cq, r)) return false;
         }
@@ -273,7 +278,8 @@ bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, dou
     // Only the part of the piece inside the level's occupied box holds medium; a level that
     // stores no brick holds none (its box is inverted, which the slab test would not notice).
     if (level.cellBoxes.empty() ||
-        !clipToBox(level.occupiedLo.asPointer(), level.occupiedHi.asPointer(), u0, qd, ray.inv, t0, t1))
+        !clipToBox(level.occupiedLo.asPointer(), level.occupiedHi.asPointer(), u0, qd, ray.inv, t0,
+                   t1))
         return true;
     const int* bricks = level.brickCount.data();
     GridWalk walk(u0, qd, ray.inv, t0, kBrick, bricks);
@@ -291,7 +297,8 @@ bool marchSkipping(const RenderLevel& level, const LevelRay& ray, double t0, dou
                 if constexpr (Nodes > 0) {
                     double ta = t, tb = tExit;
                     if (clipToCellBox(level.cellBox(b), ub, qd, ray.inv, ta, tb) &&
-                        !marchCells<Nodes>(brick, level.cellMask(b), ub, qd, ray.inv, ta, tb, cq, r))
+                        !marchCells<Nodes>(brick, level.cellMask(b), ub, qd, ray.inv, ta, tb, cq,
+                                           r))
                         return false;
                 } else {
                     const auto sample = [&](double tt) {
@@ -320,8 +327,8 @@ namespace {
 
 // The march of one ray, its pieces in order, for a compile-time node count (0: fixed steps).
 template <int Nodes>
-RayResult marchPieces(const RenderVolume& volume, const RenderVolume::RayOrigin& origin, const Vec3d& dir,
-                      const MarchOptions& options, double tStart) {
+RayResult marchPieces(const RenderVolume& volume, const RenderVolume::RayOrigin& origin,
+                      const Vec3d& dir, const MarchOptions& options, double tStart) {
     RayResult result;
     Piece pieces[RenderVolume::kMaxPieces];
     const int count = volume.partitionRay(origin, dir, pieces);
@@ -336,14 +343,16 @@ RayResult marchPieces(const RenderVolume& volume, const RenderVolume::RayOrigin&
         const LevelRay ray = level.rayFromIndexOrigin(origin.index[pieces[p].level], dir);
         bool keepGoing;
         if constexpr (Nodes > 0) {
-            keepGoing = marchSkipping<Nodes>(level, ray, pieces[p].t0, pieces[p].t1, 0.0, cq, result);
+            keepGoing =
+                marchSkipping<Nodes>(level, ray, pieces[p].t0, pieces[p].t1, 0.0, cq, result);
         } else {
             // One step of stepVoxels voxels of this level along the ray, in scene units.
             const double stepT = options.stepVoxels / ray.qd.length();
             const auto sample = [&](double t) { return level.sample(ray.q0 + ray.qd * t); };
-            keepGoing = options.skipEmptySpace
-                            ? marchSkipping<0>(level, ray, pieces[p].t0, pieces[p].t1, stepT, cq, result)
-                            : integrateSpan(sample, pieces[p].t0, pieces[p].t1, stepT, options, result);
+            keepGoing =
+                options.skipEmptySpace
+                    ? marchSkipping<0>(level, ray, pieces[p].t0, pieces[p].t1, stepT, cq, result)
+                    : integrateSpan(sample, pieces[p].t0, pieces[p].t1, stepT, options, result);
         }
         if (!keepGoing) break;
     }
@@ -356,13 +365,17 @@ RayResult marchPieces(const RenderVolume& volume, const RenderVolume::RayOrigin&
 // baseline (core/cpu_dispatch.h). Measured: v3 7.6% fewer instructions and ~7% less time per
 // envmap than the baseline, v4 1-4.5% less time than v3 (docs/performance.md).
 LH_PER_CPU_FLATTENED
-RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin, const Vec3d& dir,
-                   const MarchOptions& options, double tStart) {
+RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin,
+                   const Vec3d& dir, const MarchOptions& options, double tStart) {
     switch (options.cellNodes) {
-        case 1: return marchPieces<1>(volume, origin, dir, options, tStart);
-        case 2: return marchPieces<2>(volume, origin, dir, options, tStart);
-        case 3: return marchPieces<3>(volume, origin, dir, options, tStart);
-        default: return marchPieces<0>(volume, origin, dir, options, 0.0);  // fixed steps ignore tStart
+        case 1:
+            return marchPieces<1>(volume, origin, dir, options, tStart);
+        case 2:
+            return marchPieces<2>(volume, origin, dir, options, tStart);
+        case 3:
+            return marchPieces<3>(volume, origin, dir, options, tStart);
+        default:
+            return marchPieces<0>(volume, origin, dir, options, 0.0);  // fixed steps ignore tStart
     }
 }
 

@@ -41,16 +41,17 @@
 namespace lh {
 
 struct MarchOptions {
-    double stepVoxels = 0.5;          // step length, in voxels of the level being marched
-    double minTransmittance = 1e-4;   // stop once T drops below this (0: never stop early)
-    bool skipEmptySpace = true;       // jump over empty 8^3 bricks with a DDA
-    double maxStepOpticalDepth = 0.5; // fixed steps: sub-divide steps thicker than this (sigma * dt)
-    int cellNodes = 2;                // Gauss nodes per lattice cell (1-3); 0: fixed steps of
-                                      // stepVoxels (cell quadrature ignores stepVoxels and
-                                      // always skips empty bricks and cells)
-    double cellRefineBound = 1.0;     // cells: halve a piece above this (optical depth per node
-                                      // x transmittance x brightness / typical radiance); the
-                                      // default keeps envmap RMSE below 1e-3 of the mean radiance
+    double stepVoxels = 0.5;         // step length, in voxels of the level being marched
+    double minTransmittance = 1e-4;  // stop once T drops below this (0: never stop early)
+    bool skipEmptySpace = true;      // jump over empty 8^3 bricks with a DDA
+    double maxStepOpticalDepth =
+        0.5;                       // fixed steps: sub-divide steps thicker than this (sigma * dt)
+    int cellNodes = 2;             // Gauss nodes per lattice cell (1-3); 0: fixed steps of
+                                   // stepVoxels (cell quadrature ignores stepVoxels and
+                                   // always skips empty bricks and cells)
+    double cellRefineBound = 1.0;  // cells: halve a piece above this (optical depth per node
+                                   // x transmittance x brightness / typical radiance); the
+                                   // default keeps envmap RMSE below 1e-3 of the mean radiance
 
     // Fine fixed step, thin sub-steps, no skipping, no early stop: the answer other settings
     // are measured against.
@@ -77,7 +78,7 @@ RayResult marchRay(const RenderVolume& volume, const Vec3d& origin, const Vec3d&
 // cell quadrature, `tStart` (scene units) may name a distance before which the ray meets no
 // medium (render/first_medium.h): the walks start there, with the same answer up to rounding.
 // Fixed steps ignore it (their steps are laid from where each level's piece begins).
-RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin, const Vec3d& dir,
-                   const MarchOptions& options, double tStart = 0.0);
+RayResult marchRay(const RenderVolume& volume, const RenderVolume::RayOrigin& origin,
+                   const Vec3d& dir, const MarchOptions& options, double tStart = 0.0);
 
 }  // namespace lh

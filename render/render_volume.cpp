@@ -15,14 +15,20 @@ namespace lh {
 
 namespace {
 
-constexpr int kLatticeValues = RenderLevel::kLattice * RenderLevel::kLattice * RenderLevel::kLattice;
+constexpr int kLatticeValues =
+    RenderLevel::kLattice * RenderLevel::kLattice * RenderLevel::kLattice;
 
 // Defensive clamps: the loader already sanitises files; volumes built in memory may not be.
-float cleanSigma(float s) { return std::isfinite(s) && s > 0.f ? std::min(s, 1e15f) : (s > 0.f ? 1e15f : 0.f); }
-float cleanRadiance(float c) { return std::isfinite(c) && c > 0.f ? std::min(c, 1e15f) : (c > 0.f ? 1e15f : 0.f); }
+float cleanSigma(float s) {
+    return std::isfinite(s) && s > 0.f ? std::min(s, 1e15f) : (s > 0.f ? 1e15f : 0.f);
+}
+float cleanRadiance(float c) {
+    return std::isfinite(c) && c > 0.f ? std::min(c, 1e15f) : (c > 0.f ? 1e15f : 0.f);
+}
 
 // The part t >= 0 of a level ray inside [lo, hi]; false when it misses.
-inline bool intersectBox(const LevelRay& ray, const Vec3d& lo, const Vec3d& hi, double& tNear, double& tFar) {
+inline bool intersectBox(const LevelRay& ray, const Vec3d& lo, const Vec3d& hi, double& tNear,
+                         double& tFar) {
     tNear = 0.0;
     tFar = std::numeric_limits<double>::infinity();
     return clipToBox(lo.asPointer(), hi.asPointer(), ray.q0, ray.qd, ray.inv, tNear, tFar);
@@ -33,14 +39,17 @@ inline bool intersectBox(const LevelRay& ray, const Vec3d& lo, const Vec3d& hi, 
 void appendCellOccupancy(const std::vector<float>& lattice, std::vector<uint64_t>& masks,
                          std::vector<RenderLevel::CellBox>& boxes) {
     constexpr int n = RenderLevel::kLattice, cells = RenderLevel::kBrick;
-    const auto dense = [&](int x, int y, int z) { return lattice[std::size_t((z * n + y) * n + x) * 4] > 0.f; };
+    const auto dense = [&](int x, int y, int z) {
+        return lattice[std::size_t((z * n + y) * n + x) * 4] > 0.f;
+    };
     RenderLevel::CellBox box{{cells, cells, cells}, {0, 0, 0}};
     for (int z = 0; z < cells; ++z) {
         uint64_t word = 0;
         for (int y = 0; y < cells; ++y)
             for (int x = 0; x < cells; ++x) {
                 bool any = false;
-                for (int c = 0; c < 8 && !any; ++c) any = dense(x + (c & 1), y + ((c >> 1) & 1), z + (c >> 2));
+                for (int c = 0; c < 8 && !any; ++c)
+                    any = dense(x + (c & 1), y + ((c >> 1) & 1), z + (c >> 2));
                 if (!any) continue;
                 word |= uint64_t(1) << (x + cells * y);
                 const int at[3] = {x, y, z};
@@ -79,7 +88,8 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
     out.indexToWorld = toWorld;
     out.worldToIndex = toWorld.inverse();
     const Mat3d& m = out.worldToIndex;
-    out.axisAligned = m(0, 1) == 0 && m(0, 2) == 0 && m(1, 0) == 0 && m(1, 2) == 0 && m(2, 0) == 0 && m(2, 1) == 0;
+    out.axisAligned = m(0, 1) == 0 && m(0, 2) == 0 && m(1, 0) == 0 && m(1, 2) == 0 &&
+                      m(2, 0) == 0 && m(2, 1) == 0;
     out.indexOffset = -(out.worldToIndex * origin);
     out.voxelVolume = std::abs(toWorld.det());
 
@@ -127,51 +137,58 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
     const int bricks = int(cells);
     // Brick cell (x, y, z) of table index b (x fastest, as in brickIndex).
     const auto brickCoordinates = [&](int b) {
-        return std::array<int, 3>{b % out.brickCount[0], (b / out.brickCount[0]) % out.brickCount[1],
+        return std::array<int, 3>{b % out.brickCount[0],
+                                  (b / out.brickCount[0]) % out.brickCount[1],
                                   b / (out.brickCount[0] * out.brickCount[1])};
     };
     std::vector<std::vector<float>> lattice(bricks);
-    tbb::parallel_for(tbb::blocked_range<int>(0, bricks), [&](const tbb::blocked_range<int>& range) {
-        auto densityAcc = level.density->getConstAccessor();  // accessors are per task
-        auto colorAcc = level.color->getConstAccessor();
-        for (int b = range.begin(); b != range.end(); ++b) {
-            const auto [bx, by, bz] = brickCoordinates(b);
-            const openvdb::Coord lo = out.latticeOrigin +
-                                      openvdb::Coord(bx * RenderLevel::kBrick, by * RenderLevel::kBrick,
-                                                     bz * RenderLevel::kBrick);
-            const openvdb::CoordBBox points(lo, lo + openvdb::Coord(RenderLevel::kBrick));
-            openvdb::CoordBBox inside = points;
-            inside.intersect(domain);
-            const bool touchesHalo = !domain.isInside(points);
-            if (!touchesHalo && !openvdb::tools::anyActiveValues(level.density->tree(), inside))
-                continue;  // empty interior brick: nothing to store
-            std::vector<float> values(std::size_t(kLatticeValues) * 4, 0.f);
-            bool anyDensity = false;
-            for (int z = 0; z < RenderLevel::kLattice; ++z)
-                for (int y = 0; y < RenderLevel::kLattice; ++y)
-                    for (int x = 0; x < RenderLevel::kLattice; ++x) {
-                        const openvdb::Coord c = lo + openvdb::Coord(x, y, z);
-                        float* v = &values[std::size_t((z * RenderLevel::kLattice + y) *
-                                                           RenderLevel::kLattice + x) * 4];
-                        // Lattice points beyond max+1 are never read by lookups in the domain.
-                        if (c.x() > domain.max().x() + 1 ||
-                            c.y() > domain.max().y() + 1 || c.z() > domain.max().z() + 1)
-                            continue;
-                        if (domain.isInside(c)) {
-                            float sigma = 0.f;
-                            if (!densityAcc.probeValue(c, sigma)) sigma = 0.f;  // inactive = empty
-                            sigma = cleanSigma(sigma);
-                            const openvdb::Vec3s color = colorAcc.getValue(c);
-                            v[0] = sigma;
-                            for (int i = 0; i < 3; ++i) v[1 + i] = sigma * cleanRadiance(color[i]);
-                        } else {
-                            haloValue(c, densityAcc, colorAcc, v);
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, bricks), [&](const tbb::blocked_range<int>& range) {
+            auto densityAcc = level.density->getConstAccessor();  // accessors are per task
+            auto colorAcc = level.color->getConstAccessor();
+            for (int b = range.begin(); b != range.end(); ++b) {
+                const auto [bx, by, bz] = brickCoordinates(b);
+                const openvdb::Coord lo =
+                    out.latticeOrigin + openvdb::Coord(bx * RenderLevel::kBrick,
+                                                       by * RenderLevel::kBrick,
+                                                       bz * RenderLevel::kBrick);
+                const openvdb::CoordBBox points(lo, lo + openvdb::Coord(RenderLevel::kBrick));
+                openvdb::CoordBBox inside = points;
+                inside.intersect(domain);
+                const bool touchesHalo = !domain.isInside(points);
+                if (!touchesHalo && !openvdb::tools::anyActiveValues(level.density->tree(), inside))
+                    continue;  // empty interior brick: nothing to store
+                std::vector<float> values(std::size_t(kLatticeValues) * 4, 0.f);
+                bool anyDensity = false;
+                for (int z = 0; z < RenderLevel::kLattice; ++z)
+                    for (int y = 0; y < RenderLevel::kLattice; ++y)
+                        for (int x = 0; x < RenderLevel::kLattice; ++x) {
+                            const openvdb::Coord c = lo + openvdb::Coord(x, y, z);
+                            float* v = &values[std::size_t((z * RenderLevel::kLattice + y) *
+                                                               RenderLevel::kLattice +
+                                                           x) *
+                                               4];
+                            // Lattice points beyond max+1 are never read by lookups in the domain.
+                            if (c.x() > domain.max().x() + 1 || c.y() > domain.max().y() + 1 ||
+                                c.z() > domain.max().z() + 1)
+                                continue;
+                            if (domain.isInside(c)) {
+                                float sigma = 0.f;
+                                if (!densityAcc.probeValue(c, sigma))
+                                    sigma = 0.f;  // inactive = empty
+                                sigma = cleanSigma(sigma);
+                                const openvdb::Vec3s color = colorAcc.getValue(c);
+                                v[0] = sigma;
+                                for (int i = 0; i < 3; ++i)
+                                    v[1 + i] = sigma * cleanRadiance(color[i]);
+                            } else {
+                                haloValue(c, densityAcc, colorAcc, v);
+                            }
+                            anyDensity |= v[0] > 0.f;
                         }
-                        anyDensity |= v[0] > 0.f;
-                    }
-            if (anyDensity) lattice[b] = std::move(values);
-        }
-    });
+                if (anyDensity) lattice[b] = std::move(values);
+            }
+        });
 
     out.brickTable.assign(cells, -1);
     std::size_t stored = 0;
@@ -189,8 +206,10 @@ RenderLevel prepareLevel(const VolumeLevel& level, const std::vector<RenderLevel
         const RenderLevel::CellBox& box = out.cellBoxes.back();
         const std::array<int, 3> brick = brickCoordinates(b);
         for (int a = 0; a < 3; ++a) {
-            out.occupiedLo[a] = std::min(out.occupiedLo[a], double(brick[a] * RenderLevel::kBrick + box.lo[a]));
-            out.occupiedHi[a] = std::max(out.occupiedHi[a], double(brick[a] * RenderLevel::kBrick + box.hi[a]));
+            out.occupiedLo[a] =
+                std::min(out.occupiedLo[a], double(brick[a] * RenderLevel::kBrick + box.lo[a]));
+            out.occupiedHi[a] =
+                std::max(out.occupiedHi[a], double(brick[a] * RenderLevel::kBrick + box.hi[a]));
         }
     }
     return out;
@@ -259,12 +278,16 @@ RenderVolume::RenderVolume(const LightingVolume& volume) {
         levels.push_back(prepareLevel(level, levels));
         stored += levels.back().brickData.size() / (kLatticeValues * 4);
         if (stored > kMaxStoredBricks)
-            throw ResourceError("the volume holds more non-empty bricks than the renderer's "
-                                "memory bound (" + std::to_string(kMaxStoredBricks) + ")");
+            throw ResourceError(
+                "the volume holds more non-empty bricks than the renderer's "
+                "memory bound (" +
+                std::to_string(kMaxStoredBricks) + ")");
     }
     nested_ = true;
-    for (std::size_t k = 1; k < levels.size(); ++k) nested_ = nested_ && boxInside(levels[k], levels[k - 1]);
-    axisAligned_ = std::all_of(levels.begin(), levels.end(), [](const RenderLevel& l) { return l.axisAligned; });
+    for (std::size_t k = 1; k < levels.size(); ++k)
+        nested_ = nested_ && boxInside(levels[k], levels[k - 1]);
+    axisAligned_ = std::all_of(levels.begin(), levels.end(),
+                               [](const RenderLevel& l) { return l.axisAligned; });
     typicalRadiance_ = typicalSurfaceRadiance(levels);
     mediumBoxesValid_ = boundMedium(levels, mediumBoxes_);
 }
@@ -285,7 +308,8 @@ RenderVolume::RayOrigin RenderVolume::rayOrigin(const Vec3d& world) const {
 }
 
 LH_PER_CPU  // core/cpu_dispatch.h: 2.8% fewer instructions per envmap on x86-64-v3
-int RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces) const {
+    int
+    RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece* pieces) const {
     if (!nested_) return partitionRayGeneral(origin, dir, pieces);
     // Nested boxes: the ray's interval in a finer level lies inside its interval in every
     // coarser level, so the pieces, in ray order, are the coarser levels' entry parts
@@ -294,13 +318,15 @@ int RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece*
     double lo[kMaxPieces], hi[kMaxPieces];
     int hit = 0;  // levels 0 .. hit-1 are hit (a level missed means every finer one is too)
     const Vec3d invDir(1.0 / dir.x(), 1.0 / dir.y(), 1.0 / dir.z());
-    if (axisAligned_ && std::isfinite(invDir.x()) && std::isfinite(invDir.y()) && std::isfinite(invDir.z())) {
+    if (axisAligned_ && std::isfinite(invDir.x()) && std::isfinite(invDir.y()) &&
+        std::isfinite(invDir.z())) {
         // Slab tests in scene units, three products per level and no division. (A zero
         // component would make 0 x inf; those rays take the index-space test below.)
         for (; hit < n; ++hit) {
             double tNear = 0.0, tFar = std::numeric_limits<double>::infinity();
             for (int a = 0; a < 3; ++a) {
-                const double t0 = origin.toLowFace[hit][a] * invDir[a], t1 = origin.toHighFace[hit][a] * invDir[a];
+                const double t0 = origin.toLowFace[hit][a] * invDir[a],
+                             t1 = origin.toHighFace[hit][a] * invDir[a];
                 tNear = std::max(tNear, std::min(t0, t1));
                 tFar = std::min(tFar, std::max(t0, t1));
             }
@@ -322,19 +348,20 @@ int RenderVolume::partitionRay(const RayOrigin& origin, const Vec3d& dir, Piece*
         if (hi[k] > hi[k + 1]) pieces[count++] = {hi[k + 1], hi[k], k};
     // At most two pieces per coarser level and one for the finest, in ray order.
     LH_DCHECK(count <= 2 * n - 1 && count <= kMaxPieces);
-    for (int p = 1; p < count; ++p) LH_DCHECK(pieces[p].t0 >= pieces[p - 1].t1 - 1e-9 * (1 + std::abs(pieces[p].t0)));
+    for (int p = 1; p < count; ++p)
+        LH_DCHECK(pieces[p].t0 >= pieces[p - 1].t1 - 1e-9 * (1 + std::abs(pieces[p].t0)));
     return count;
 }
 
-int RenderVolume::partitionRayGeneral(const RayOrigin& origin, const Vec3d& dir, Piece* pieces) const {
+int RenderVolume::partitionRayGeneral(const RayOrigin& origin, const Vec3d& dir,
+                                      Piece* pieces) const {
     int count = 0;
     // Finest first: each level claims the parts of its interval no finer level has claimed.
     for (int k = int(levels.size()) - 1; k >= 0; --k) {
         const RenderLevel& level = levels[k];
         double a, b;
         const LevelRay ray = level.rayFromIndexOrigin(origin.index[k], dir);
-        if (!intersectBox(ray, level.domainLo, level.domainHi, a, b))
-            continue;
+        if (!intersectBox(ray, level.domainLo, level.domainHi, a, b)) continue;
         // Subtract claimed intervals from [a, b]; claimed pieces are disjoint.
         double free0[kMaxPieces + 1], free1[kMaxPieces + 1];
         int nFree = 1;
@@ -375,7 +402,8 @@ RenderSample RenderVolume::sampleWorld(const Vec3d& world) const {
 
 double RenderVolume::voxelSizeAt(const Vec3d& world) const {
     for (int k = int(levels.size()) - 1; k >= 0; --k) {
-        if (levels[k].containsIndex(levels[k].toIndex(world))) return std::cbrt(levels[k].voxelVolume);
+        if (levels[k].containsIndex(levels[k].toIndex(world)))
+            return std::cbrt(levels[k].voxelVolume);
     }
     return 0.0;
 }
@@ -390,7 +418,8 @@ std::size_t RenderVolume::memoryBytes() const {
     std::size_t n = 0;
     for (const auto& l : levels)
         n += l.brickData.size() * sizeof(float) + l.brickTable.size() * sizeof(int32_t) +
-             l.cellMasks.size() * sizeof(uint64_t) + l.cellBoxes.size() * sizeof(RenderLevel::CellBox);
+             l.cellMasks.size() * sizeof(uint64_t) +
+             l.cellBoxes.size() * sizeof(RenderLevel::CellBox);
     return n;
 }
 

@@ -2,9 +2,9 @@
 //
 // Each level becomes a sparse set of 8^3-voxel bricks in its own index space. A brick stores a
 // 9^3 lattice of (sigma, sigma*r, sigma*g, sigma*b) so that a trilinear lookup reads one
-// contiguous block: sigma and the premultiplied emission are interpolated (docs/conventions.md#interpolation),
-// colour = emission / sigma. Bricks whose lattice has no density are not stored; the marcher
-// skips them without sampling.
+// contiguous block: sigma and the premultiplied emission are interpolated
+// (docs/conventions.md#interpolation), colour = emission / sigma. Bricks whose lattice has no
+// density are not stored; the marcher skips them without sampling.
 //
 // No seams: a level's lattice includes a one-voxel halo outside its domain, filled from the
 // next coarser level that contains the halo point (or, with none, by repeating the edge voxel).
@@ -76,13 +76,16 @@ public:
     // World -> continuous index coordinates (voxel centres at integers).
     Vec3d toIndex(const Vec3d& world) const { return worldToIndex * world + indexOffset; }
     Vec3d directionToIndex(const Vec3d& dir) const { return worldToIndex * dir; }
-    LevelRay ray(const Vec3d& origin, const Vec3d& dir) const { return rayFromIndexOrigin(toIndex(origin), dir); }
+    LevelRay ray(const Vec3d& origin, const Vec3d& dir) const {
+        return rayFromIndexOrigin(toIndex(origin), dir);
+    }
     // The same with the origin already in index coordinates (RenderVolume::RayOrigin): only the
     // direction is mapped, with three products when the level's axes are the world's.
     LevelRay rayFromIndexOrigin(const Vec3d& q0, const Vec3d& dir) const {
-        const Vec3d qd = axisAligned ? Vec3d(worldToIndex(0, 0) * dir.x(), worldToIndex(1, 1) * dir.y(),
-                                             worldToIndex(2, 2) * dir.z())
-                                     : directionToIndex(dir);
+        const Vec3d qd = axisAligned
+                             ? Vec3d(worldToIndex(0, 0) * dir.x(), worldToIndex(1, 1) * dir.y(),
+                                     worldToIndex(2, 2) * dir.z())
+                             : directionToIndex(dir);
         return {q0, qd, Vec3d(1.0 / qd.x(), 1.0 / qd.y(), 1.0 / qd.z())};
     }
 
@@ -99,8 +102,8 @@ public:
     static RenderSample sampleLattice(const float* brick, float u, float v, float w) {
         const int i = std::clamp(int(u), 0, kBrick - 1), j = std::clamp(int(v), 0, kBrick - 1),
                   k = std::clamp(int(w), 0, kBrick - 1);
-        return sampleCell(brick + (k * kLatticeZ + j * kLatticeY + i * 4), u - float(i), v - float(j),
-                          w - float(k));
+        return sampleCell(brick + (k * kLatticeZ + j * kLatticeY + i * 4), u - float(i),
+                          v - float(j), w - float(k));
     }
     // Trilinear sample inside one lattice cell: `corner` points at its (0, 0, 0) lattice point
     // (+4 floats is +x, +kLatticeY is +y, +kLatticeZ is +z), (fx, fy, fz) in [0, 1] (clamped).
@@ -114,7 +117,8 @@ public:
         fx = std::clamp(fx, 0.f, 1.f), fy = std::clamp(fy, 0.f, 1.f), fz = std::clamp(fz, 0.f, 1.f);
         constexpr int sy = kLatticeY, sz = kLatticeZ;
         // Lerps: exact for equal corners (constant media).
-        const Float4 c00 = lerp(load4(p), load4(p + 4), fx), c10 = lerp(load4(p + sy), load4(p + sy + 4), fx),
+        const Float4 c00 = lerp(load4(p), load4(p + 4), fx),
+                     c10 = lerp(load4(p + sy), load4(p + sy + 4), fx),
                      c01 = lerp(load4(p + sz), load4(p + sz + 4), fx),
                      c11 = lerp(load4(p + sz + sy), load4(p + sz + sy + 4), fx);
         const Float4 out = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
@@ -122,7 +126,9 @@ public:
     }
     // Occupancy of a stored brick's 8^3 lattice cells: bit (x + 8 y) of word z is set if any of
     // the cell's eight corners (x..x+1, y..y+1, z..z+1) has density.
-    const uint64_t* cellMask(int stored) const { return cellMasks.data() + std::size_t(stored) * kBrick; }
+    const uint64_t* cellMask(int stored) const {
+        return cellMasks.data() + std::size_t(stored) * kBrick;
+    }
     // The box around a stored brick's occupied cells, in cells [lo, hi) per axis. Every cell
     // outside it is empty, so a ray walks only the part of the brick inside it (and skips a
     // brick whose box it misses): a wall two voxels thick fills a box two cells thick.
@@ -136,16 +142,17 @@ public:
     // True if the brick cell at brick coordinates (bx, by, bz) holds density.
     bool brickOccupied(int bx, int by, int bz) const;
     int brickIndex(int bx, int by, int bz) const {
-        LH_DCHECK(bx >= 0 && bx < brickCount[0] && by >= 0 && by < brickCount[1] && bz >= 0 && bz < brickCount[2]);
+        LH_DCHECK(bx >= 0 && bx < brickCount[0] && by >= 0 && by < brickCount[1] && bz >= 0 &&
+                  bz < brickCount[2]);
         return brickTable[(std::size_t(bz) * brickCount[1] + by) * brickCount[0] + bx];
     }
 
-    Mat3d worldToIndex;  // linear part of the world -> index map
-    bool axisAligned = false;  // worldToIndex is diagonal (the usual layout)
-    Vec3d indexOffset;   // translation of the world -> index map
-    Mat3d indexToWorld;  // inverse linear part (for halo positions)
-    Vec3d domainLo, domainHi;  // continuous index bounds: outer faces of the domain's voxels
-    openvdb::Coord latticeOrigin;   // index coordinate of lattice point (0,0,0) of brick (0,0,0)
+    Mat3d worldToIndex;            // linear part of the world -> index map
+    bool axisAligned = false;      // worldToIndex is diagonal (the usual layout)
+    Vec3d indexOffset;             // translation of the world -> index map
+    Mat3d indexToWorld;            // inverse linear part (for halo positions)
+    Vec3d domainLo, domainHi;      // continuous index bounds: outer faces of the domain's voxels
+    openvdb::Coord latticeOrigin;  // index coordinate of lattice point (0,0,0) of brick (0,0,0)
     std::array<int, 3> brickCount{0, 0, 0};
     std::vector<int32_t> brickTable;  // -1 = empty brick
     std::vector<float> brickData;     // kLattice^3 x 4 floats per stored brick
@@ -154,8 +161,9 @@ public:
     // The box around every occupied cell of the level, in lattice coordinates (relative to
     // latticeOrigin): the field is zero outside it, so a ray walks only its part inside.
     // Empty (lo > hi) when the level stores no brick.
-    Vec3d occupiedLo{std::numeric_limits<double>::max()}, occupiedHi{std::numeric_limits<double>::lowest()};
-    double voxelVolume = 0;           // scene units^3
+    Vec3d occupiedLo{std::numeric_limits<double>::max()},
+        occupiedHi{std::numeric_limits<double>::lowest()};
+    double voxelVolume = 0;  // scene units^3
 };
 
 // A box in scene units (world frame) outside which a volume's field is zero: see
@@ -181,7 +189,7 @@ public:
     // levels, the offsets from the origin to the level's faces in scene units along each axis
     // (a ray's slab test is then three products per level).
     struct RayOrigin {
-        std::array<Vec3d, kMaxLevels> index;            // entries [0, levels.size()) are set
+        std::array<Vec3d, kMaxLevels> index;                  // entries [0, levels.size()) are set
         std::array<Vec3d, kMaxLevels> toLowFace, toHighFace;  // set for axis-aligned levels
     };
     RayOrigin rayOrigin(const Vec3d& world) const;
@@ -222,7 +230,7 @@ public:
     double typicalRadiance() const { return typicalRadiance_; }
 
 private:
-    bool nested_ = false;  // every level's box inside the next coarser level's box
+    bool nested_ = false;       // every level's box inside the next coarser level's box
     bool axisAligned_ = false;  // every level's axes are the world's (RenderLevel::axisAligned)
     double typicalRadiance_ = 0.0;
     std::vector<MediumBox> mediumBoxes_;

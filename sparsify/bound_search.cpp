@@ -18,7 +18,8 @@ double requiredPsnrForLoss(double lossDb, double basePsnr) {
     return basePsnr - 20.0 * std::log10(std::pow(10.0, lossDb / 20.0) - 1.0);
 }
 
-BoundChoice chooseSparsityBound(const LightingVolume& volume, double requiredPsnr, const BoundSearchOptions& o,
+BoundChoice chooseSparsityBound(const LightingVolume& volume, double requiredPsnr,
+                                const BoundSearchOptions& o,
                                 const std::function<void(const std::string&)>& progress) {
     const RenderVolume unprunedRender(volume);
     const std::vector<Vec3d> points = freeSpacePoints(unprunedRender, o.points, o.seed);
@@ -30,12 +31,14 @@ BoundChoice chooseSparsityBound(const LightingVolume& volume, double requiredPsn
         SparsityOptions so;
         so.tau = tau;
         const LightingVolume pruned = sparsify(volume, so);
-        const RenderVolume render(o.halfPrecision ? asStored(pruned, true, scratch, nullptr) : pruned);
-        const EnvmapSetError e =
-            compareEnvmapSets(renderEnvmapsAt(render, points, o.width, o.height, nullptr, o.errorMarch), reference);
+        const RenderVolume render(o.halfPrecision ? asStored(pruned, true, scratch, nullptr)
+                                                  : pruned);
+        const EnvmapSetError e = compareEnvmapSets(
+            renderEnvmapsAt(render, points, o.width, o.height, nullptr, o.errorMarch), reference);
         if (progress) {
             char line[128];
-            std::snprintf(line, sizeof line, "tau %.3g: %.1f dB against the unpruned envmaps", tau, e.psnr);
+            std::snprintf(line, sizeof line, "tau %.3g: %.1f dB against the unpruned envmaps", tau,
+                          e.psnr);
             progress(line);
         }
         if (e.psnr >= requiredPsnr) {

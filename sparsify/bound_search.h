@@ -20,19 +20,19 @@ namespace lh {
 double requiredPsnrForLoss(double lossDb, double basePsnr);
 
 struct BoundSearchOptions {
-    int points = 4;              // random free-space query points (render/free_space.h)
+    int points = 4;  // random free-space query points (render/free_space.h)
     int width = 240, height = 120;
     uint64_t seed = 1;
-    bool halfPrecision = true;   // render what a half-precision file holds
-    std::string scratchDir;      // where trial files go (empty: a fresh temporary directory)
+    bool halfPrecision = true;  // render what a half-precision file holds
+    std::string scratchDir;     // where trial files go (empty: a fresh temporary directory)
     // Errors are measured with fine steps, so that they show what pruning changed and not
     // where the default steps happen to fall (pruning moves level boundaries, hence steps).
     MarchOptions errorMarch{0.1, 1e-6, true, 0.05, 0};
 };
 
 struct BoundChoice {
-    double tau = 0;         // largest bound tried that met the requirement (0: none did)
-    double psnr = 100;      // its PSNR against the unpruned envmaps, dB
+    double tau = 0;     // largest bound tried that met the requirement (0: none did)
+    double psnr = 100;  // its PSNR against the unpruned envmaps, dB
 };
 // Tries bounds from 0.1 down by factors of sqrt(10) to 1e-6 and returns the first whose
 // envmaps (optionally through half precision) reach `requiredPsnr` against the unpruned ones.

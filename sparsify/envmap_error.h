@@ -19,12 +19,14 @@ struct EnvmapSetError {
 };
 
 // images[i] against reference[i]; both sets the same length and sizes.
-EnvmapSetError compareEnvmapSets(const std::vector<ImageRGB>& images, const std::vector<ImageRGB>& reference);
+EnvmapSetError compareEnvmapSets(const std::vector<ImageRGB>& images,
+                                 const std::vector<ImageRGB>& reference);
 
 // One width x height envmap per point, in order. With msPerEnvmap, the mean wall time of one
 // envmap (ms) is written there.
-std::vector<ImageRGB> renderEnvmapsAt(const RenderVolume& volume, const std::vector<Vec3d>& points, int width,
-                                      int height, double* msPerEnvmap = nullptr, const MarchOptions& march = {});
+std::vector<ImageRGB> renderEnvmapsAt(const RenderVolume& volume, const std::vector<Vec3d>& points,
+                                      int width, int height, double* msPerEnvmap = nullptr,
+                                      const MarchOptions& march = {});
 
 // A directory for trial files, created: `requested`, or when that is empty a fresh one under
 // the system's temporary directory (named after the process). The caller removes it.
@@ -33,6 +35,7 @@ std::string scratchDirectory(const std::string& requested);
 // The volume as a file stores it: written Blosc-compressed into `scratch` (as half floats when
 // `half`, vdb/sparsity.h saveSparseVolume), read back, and the file removed. With `bytes`, the
 // file's size is written there.
-LightingVolume asStored(const LightingVolume& volume, bool half, const std::string& scratch, uint64_t* bytes);
+LightingVolume asStored(const LightingVolume& volume, bool half, const std::string& scratch,
+                        uint64_t* bytes);
 
 }  // namespace lh

@@ -32,7 +32,8 @@ ImageRGB renderEnvmapConcentricSpheres(const RenderVolume& volume, const Vec3d& 
         double nearest = 0, farthest = 0;
         const Vec3d q = level.toIndex(position);
         Vec3d closest;
-        for (int a = 0; a < 3; ++a) closest[a] = std::clamp(q[a], level.domainLo[a], level.domainHi[a]);
+        for (int a = 0; a < 3; ++a)
+            closest[a] = std::clamp(q[a], level.domainLo[a], level.domainHi[a]);
         nearest = (level.indexToWorld * (closest - q)).length();
         for (int c = 0; c < 8; ++c) {
             const Vec3d corner((c & 1) ? level.domainHi.x() : level.domainLo.x(),
@@ -41,9 +42,11 @@ ImageRGB renderEnvmapConcentricSpheres(const RenderVolume& volume, const Vec3d& 
             farthest = std::max(farthest, (level.indexToWorld * (corner - q)).length());
         }
         const double shell = (farthest - nearest) / spheresPerLevel;
-        for (int i = 0; i < spheresPerLevel; ++i) spheres.push_back({nearest + (i + 0.5) * shell, shell, k});
+        for (int i = 0; i < spheresPerLevel; ++i)
+            spheres.push_back({nearest + (i + 0.5) * shell, shell, k});
     }
-    std::sort(spheres.begin(), spheres.end(), [](const Sphere& a, const Sphere& b) { return a.radius < b.radius; });
+    std::sort(spheres.begin(), spheres.end(),
+              [](const Sphere& a, const Sphere& b) { return a.radius < b.radius; });
     ImageRGB image(width, height);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
         for (int r = rows.begin(); r != rows.end(); ++r)
@@ -71,24 +74,29 @@ ImageRGB renderEnvmapConcentricSpheres(const RenderVolume& volume, const Vec3d& 
     return image;
 }
 
-ImageRGB renderEnvmapOpenVdbFixedStep(const LightingVolume& volume, const Vec3d& position, int width,
-                                      int height, double stepVoxels) {
+ImageRGB renderEnvmapOpenVdbFixedStep(const LightingVolume& volume, const Vec3d& position,
+                                      int width, int height, double stepVoxels) {
     EnvmapOptions({width, height, MarchOptions{stepVoxels, 1e-4, false, 0.5, 0}}).validate();
     // How far rays go: the farthest corner of any level.
     double reach = 0;
     for (const auto& level : volume.levels) {
         const WorldBox b = level.worldBounds();
         for (int c = 0; c < 8; ++c)
-            reach = std::max(reach, (Vec3d((c & 1) ? b.max.x() : b.min.x(), (c & 2) ? b.max.y() : b.min.y(),
-                                           (c & 4) ? b.max.z() : b.min.z()) - position).length());
+            reach = std::max(
+                reach, (Vec3d((c & 1) ? b.max.x() : b.min.x(), (c & 2) ? b.max.y() : b.min.y(),
+                              (c & 4) ? b.max.z() : b.min.z()) -
+                        position)
+                           .length());
     }
     std::vector<double> voxel;
     for (const auto& level : volume.levels) voxel.push_back(std::cbrt(level.voxelVolume()));
     ImageRGB image(width, height);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
         // Samplers (and their accessors) per task, never shared between threads.
-        using DensitySampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
-        using ColorSampler = openvdb::tools::GridSampler<openvdb::Vec3SGrid::ConstAccessor, openvdb::tools::BoxSampler>;
+        using DensitySampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor,
+                                                           openvdb::tools::BoxSampler>;
+        using ColorSampler = openvdb::tools::GridSampler<openvdb::Vec3SGrid::ConstAccessor,
+                                                         openvdb::tools::BoxSampler>;
         std::vector<openvdb::FloatGrid::ConstAccessor> densityAcc;
         std::vector<openvdb::Vec3SGrid::ConstAccessor> colorAcc;
         for (const auto& level : volume.levels) {

@@ -14,7 +14,7 @@ namespace lh {
 ImageRGB renderEnvmapConcentricSpheres(const RenderVolume& volume, const Vec3d& position, int width,
                                        int height, int spheresPerLevel = 128);
 
-ImageRGB renderEnvmapOpenVdbFixedStep(const LightingVolume& volume, const Vec3d& position, int width,
-                                      int height, double stepVoxels = 0.5);
+ImageRGB renderEnvmapOpenVdbFixedStep(const LightingVolume& volume, const Vec3d& position,
+                                      int width, int height, double stepVoxels = 0.5);
 
 }  // namespace lh

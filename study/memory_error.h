@@ -16,12 +16,13 @@ namespace lh {
 
 struct MemoryErrorOptions {
     std::vector<double> taus{1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1};  // vdb/sparsity.h bounds
-    bool halfPrecision = true;   // render what a half-precision file holds
-    int points = 4;              // random free-space query points (render/free_space.h)
+    bool halfPrecision = true;  // render what a half-precision file holds
+    int points = 4;             // random free-space query points (render/free_space.h)
     int width = 240, height = 120;
     uint64_t seed = 1;
-    std::string datasetDir;      // optional: a directory with cameras.json and ground-truth envmaps
-    std::string scratchDir;      // where files are written to measure bytes on disk (empty: a temporary one)
+    std::string datasetDir;  // optional: a directory with cameras.json and ground-truth envmaps
+    std::string
+        scratchDir;  // where files are written to measure bytes on disk (empty: a temporary one)
     // Errors are measured with fine steps, so that they show what pruning changed and not
     // where the default steps happen to fall (pruning moves level boundaries, hence steps);
     // speed is timed with the default settings.
@@ -29,18 +30,18 @@ struct MemoryErrorOptions {
 };
 
 struct MemoryErrorRow {
-    std::string setting;           // "unpruned" or "tau 0.001"
-    double tau = 0;                // -1 for the unpruned volume
-    uint64_t activeVoxels = 0;     // active density voxels, all levels
-    uint64_t memoryBytes = 0;      // both grids in memory
-    uint64_t diskBytesFloat = 0;   // .vdb, Blosc, 32-bit floats
-    uint64_t diskBytesHalf = 0;    // .vdb, Blosc, 16-bit halves
+    std::string setting;          // "unpruned" or "tau 0.001"
+    double tau = 0;               // -1 for the unpruned volume
+    uint64_t activeVoxels = 0;    // active density voxels, all levels
+    uint64_t memoryBytes = 0;     // both grids in memory
+    uint64_t diskBytesFloat = 0;  // .vdb, Blosc, 32-bit floats
+    uint64_t diskBytesHalf = 0;   // .vdb, Blosc, 16-bit halves
     int levels = 0;
-    double psnrVsUnpruned = 100;   // dB, mean over points (identical images capped at 100)
-    double relativeRmse = 0;       // RMSE / mean radiance against the unpruned envmaps
-    double msPerEnvmap = 0;        // default march settings, 2 cores
-    double psnrGroundTruth = -1;   // dB, mean over the data set's envmaps (-1: no data set)
-    double lossDb = 0;             // PSNR against ground truth lost by pruning, dB
+    double psnrVsUnpruned = 100;  // dB, mean over points (identical images capped at 100)
+    double relativeRmse = 0;      // RMSE / mean radiance against the unpruned envmaps
+    double msPerEnvmap = 0;       // default march settings, 2 cores
+    double psnrGroundTruth = -1;  // dB, mean over the data set's envmaps (-1: no data set)
+    double lossDb = 0;            // PSNR against ground truth lost by pruning, dB
 };
 
 // Sparsifies `volume` at every bound in options.taus and measures memory, bytes on disk and
@@ -56,7 +57,8 @@ constexpr double kMemoryTargetFraction = 0.1, kMemoryTargetLossDb = 0.1;
 
 // The target read from the row at bound `tau` (the default's): on disk, in memory, and the
 // loss against ground truth where the rows have it. Markdown, appended to memory_error.md.
-std::string memoryTargetMarkdown(const std::vector<MemoryErrorRow>& rows, double denseBytes, double tau);
+std::string memoryTargetMarkdown(const std::vector<MemoryErrorRow>& rows, double denseBytes,
+                                 double tau);
 
 // memory_error.csv, memory_error.md and memory_error.svg (envmap error against bytes).
 void writeMemoryErrorReport(const std::vector<MemoryErrorRow>& rows, const std::string& directory,

@@ -19,18 +19,24 @@ namespace lh {
 
 std::string cellQuadratureLabel(int nodes, double bound, double threshold) {
     std::ostringstream s;
-    s << nodes << " Gauss node" << (nodes > 1 ? "s" : "") << "/cell, bound " << bound << ", T<" << threshold;
+    s << nodes << " Gauss node" << (nodes > 1 ? "s" : "") << "/cell, bound " << bound << ", T<"
+      << threshold;
     return s.str();
 }
 
-std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume, const SpeedErrorOptions& o,
-                                                    const std::function<void(const std::string&)>& progress) {
+std::vector<SpeedErrorRow> measureSpeedAgainstError(
+    const LightingVolume& volume, const SpeedErrorOptions& o,
+    const std::function<void(const std::string&)>& progress) {
     const RenderVolume prepared(volume);
     const std::vector<Vec3d> points = freeSpacePoints(prepared, o.points, o.seed);
-    const auto say = [&](const std::string& s) { if (progress) progress(s); };
+    const auto say = [&](const std::string& s) {
+        if (progress) progress(s);
+    };
     say("reference envmaps (0.05-voxel steps, no skipping)");
     std::vector<ImageRGB> reference;
-    for (const Vec3d& p : points) reference.push_back(renderEnvmap(prepared, p, {o.width, o.height, MarchOptions::reference()}));
+    for (const Vec3d& p : points)
+        reference.push_back(
+            renderEnvmap(prepared, p, {o.width, o.height, MarchOptions::reference()}));
 
     // Every setting to measure, first collected, then timed in rounds.
     struct Trial {
@@ -40,12 +46,14 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
     std::vector<Trial> trials;
     const auto measure = [&](const std::string& method, const std::string& setting,
                              std::function<ImageRGB(const Vec3d&)> render) {
-        if (o.methods.empty() || std::find(o.methods.begin(), o.methods.end(), method) != o.methods.end())
+        if (o.methods.empty() ||
+            std::find(o.methods.begin(), o.methods.end(), method) != o.methods.end())
             trials.push_back({method, setting, std::move(render)});
     };
     // How converged the reference is: the same at half the step and optical depth per step.
     measure("reference-check", "step 0.025, tau<0.01", [&](const Vec3d& p) {
-        return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{0.025, 0.0, false, 0.01, 0}});
+        return renderEnvmap(prepared, p,
+                            {o.width, o.height, MarchOptions{0.025, 0.0, false, 0.01, 0}});
     });
     for (double tauMax : {0.5, 0.1})
         for (double threshold : {1e-4, 1e-2})
@@ -53,7 +61,9 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
                 std::ostringstream s;
                 s << "step " << step << ", T<" << threshold << ", tau<" << tauMax;
                 measure("ours-steps", s.str(), [&, step, threshold, tauMax](const Vec3d& p) {
-                    return renderEnvmap(prepared, p, {o.width, o.height, MarchOptions{step, threshold, true, tauMax, 0}});
+                    return renderEnvmap(
+                        prepared, p,
+                        {o.width, o.height, MarchOptions{step, threshold, true, tauMax, 0}});
                 });
             }
     // The termination threshold trades error for time too: a ray stops once what is left of
@@ -66,38 +76,47 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(const LightingVolume& volume
                 march.cellNodes = nodes;
                 march.minTransmittance = threshold;
                 measure("ours-cells", cellQuadratureLabel(nodes, bound, threshold),
-                        [&, march](const Vec3d& p) { return renderEnvmap(prepared, p, {o.width, o.height, march}); });
+                        [&, march](const Vec3d& p) {
+                            return renderEnvmap(prepared, p, {o.width, o.height, march});
+                        });
             }
     for (double step : {0.5, 1.0, 2.0})
         measure("openvdb-fixed-step", "step " + std::to_string(step).substr(0, 4),
-                [&, step](const Vec3d& p) { return renderEnvmapOpenVdbFixedStep(volume, p, o.width, o.height, step); });
+                [&, step](const Vec3d& p) {
+                    return renderEnvmapOpenVdbFixedStep(volume, p, o.width, o.height, step);
+                });
     for (int spheres : {32, 64, 128, 256})
         measure("paper-spheres", std::to_string(spheres) + " spheres/level",
-                [&, spheres](const Vec3d& p) { return renderEnvmapConcentricSpheres(prepared, p, o.width, o.height, spheres); });
+                [&, spheres](const Vec3d& p) {
+                    return renderEnvmapConcentricSpheres(prepared, p, o.width, o.height, spheres);
+                });
 
     // Round r renders every setting at every point once: a setting's time per point is the
     // fastest over the rounds, so each setting is sampled across the whole run and a drift of
-    // the machine's speed (a shared machine's changes by up to 2x within an hour) falls on all of them
-    // alike. The errors come from the first round (renders are deterministic).
+    // the machine's speed (a shared machine's changes by up to 2x within an hour) falls on all of
+    // them alike. The errors come from the first round (renders are deterministic).
     std::vector<SpeedErrorRow> rows(trials.size());
-    std::vector<std::vector<double>> fastest(trials.size(),
-                                             std::vector<double>(points.size(), std::numeric_limits<double>::infinity()));
+    std::vector<std::vector<double>> fastest(
+        trials.size(), std::vector<double>(points.size(), std::numeric_limits<double>::infinity()));
     for (int round = 0; round < o.repeats; ++round) {
         for (std::size_t k = 0; k < trials.size(); ++k) {
             const Trial& trial = trials[k];
             const bool once = trial.method == "reference-check";  // 2 s an envmap: one round
             if (once && round > 0) continue;
-            say("round " + std::to_string(round + 1) + "/" + std::to_string(o.repeats) + ": " + trial.method + ", " +
-                trial.setting);
+            say("round " + std::to_string(round + 1) + "/" + std::to_string(o.repeats) + ": " +
+                trial.method + ", " + trial.setting);
             std::vector<ImageRGB> images(points.size());
             for (std::size_t i = 0; i < points.size(); ++i) {
                 const auto start = std::chrono::steady_clock::now();
                 images[i] = trial.render(points[i]);
-                fastest[k][i] = std::min(
-                    fastest[k][i], std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+                fastest[k][i] =
+                    std::min(fastest[k][i], std::chrono::duration<double, std::milli>(
+                                                std::chrono::steady_clock::now() - start)
+                                                .count());
             }
             if (round == 0) {
-                const EnvmapSetError e = compareEnvmapSets(images, reference);  // PSNR of identical images capped at 100
+                const EnvmapSetError e =
+                    compareEnvmapSets(images, reference);  // PSNR of identical images capped at 100
                 rows[k] = {trial.method, trial.setting, 0.0, e.relativeRmse, e.psnr};
             }
         }
@@ -115,14 +134,17 @@ namespace {
 // Time against error, log-log, one series per method, each with a curve through its settings
 // worth choosing (no other of its settings is both faster and more accurate).
 std::string speedErrorSvg(const std::vector<SpeedErrorRow>& rows) {
-    const std::map<std::string, std::string> colours = {
-        {"ours-steps", "#d62728"}, {"ours-cells", "#9467bd"}, {"openvdb-fixed-step", "#1f77b4"},
-        {"paper-spheres", "#2ca02c"}, {"reference-check", "#7f7f7f"}};
+    const std::map<std::string, std::string> colours = {{"ours-steps", "#d62728"},
+                                                        {"ours-cells", "#9467bd"},
+                                                        {"openvdb-fixed-step", "#1f77b4"},
+                                                        {"paper-spheres", "#2ca02c"},
+                                                        {"reference-check", "#7f7f7f"}};
     std::vector<PlotSeries> series;
     for (const auto& [method, colour] : colours) {
         PlotSeries sr{method, colour, {}, false, {}};
         for (const auto& r : rows)
-            if (r.method == method) sr.points.push_back({r.msPerEnvmap, r.relativeRmse, r.method + ": " + r.setting});
+            if (r.method == method)
+                sr.points.push_back({r.msPerEnvmap, r.relativeRmse, r.method + ": " + r.setting});
         sr.curve = lowerLeftFront(sr.points);
         series.push_back(sr);
     }
@@ -132,21 +154,24 @@ std::string speedErrorSvg(const std::vector<SpeedErrorRow>& rows) {
 
 }  // namespace
 
-void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::string& directory, int width,
-                           int height) {
+void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::string& directory,
+                           int width, int height) {
     std::filesystem::create_directories(directory);
     std::ostringstream csv, md;
     csv << "method,setting,ms_per_envmap,envmaps_per_second,relative_rmse,psnr_db\n";
-    md << "| method | setting | ms / envmap | envmaps / s | RMSE / mean radiance | PSNR (dB) |\n|---|---|---|---|---|---|\n";
+    md << "| method | setting | ms / envmap | envmaps / s | RMSE / mean radiance | PSNR (dB) "
+          "|\n|---|---|---|---|---|---|\n";
     for (const auto& r : rows) {
-        csv << r.method << "," << r.setting << "," << r.msPerEnvmap << "," << 1000 / r.msPerEnvmap << ","
-            << r.relativeRmse << "," << r.psnr << "\n";
+        csv << r.method << "," << r.setting << "," << r.msPerEnvmap << "," << 1000 / r.msPerEnvmap
+            << "," << r.relativeRmse << "," << r.psnr << "\n";
         char line[256];
-        std::snprintf(line, sizeof line, "| %s | %s | %.1f | %.1f | %.2e | %.1f |\n", r.method.c_str(),
-                      r.setting.c_str(), r.msPerEnvmap, 1000 / r.msPerEnvmap, r.relativeRmse, r.psnr);
+        std::snprintf(line, sizeof line, "| %s | %s | %.1f | %.1f | %.2e | %.1f |\n",
+                      r.method.c_str(), r.setting.c_str(), r.msPerEnvmap, 1000 / r.msPerEnvmap,
+                      r.relativeRmse, r.psnr);
         md << line;
     }
-    md << speedSummaryMarkdown(summarizeSpeedAgainstError(rows, SpeedSummary{}.errorBound, {}, width, height));
+    md << speedSummaryMarkdown(
+        summarizeSpeedAgainstError(rows, SpeedSummary{}.errorBound, {}, width, height));
     const std::filesystem::path dir(directory);
     writeTextFile((dir / "speed_error.csv").string(), csv.str());
     writeTextFile((dir / "speed_error.md").string(), md.str());

@@ -14,15 +14,15 @@
 namespace lh {
 
 struct SpeedErrorOptions {
-    int points = 8;               // random query points in free space
+    int points = 8;  // random query points in free space
     int width = 240, height = 120;
     uint64_t seed = 1;
     // Timed rounds: each round renders every setting at every point once, and a row's time
     // is, per point, the fastest over the rounds, averaged over the points (the
     // reference-check row renders in the first round only). The minimum is what a method
     // costs (a busy machine only ever adds to it), and rounds spread every setting over the
-    // whole run, so a drift of the machine's speed (a shared machine's changes by up to 2x within an
-    // hour) falls on all settings alike and ratios stay fair.
+    // whole run, so a drift of the machine's speed (a shared machine's changes by up to 2x within
+    // an hour) falls on all settings alike and ratios stay fair.
     int repeats = 3;
     // Methods to measure ("reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step",
     // "paper-spheres"); empty: all of them.
@@ -30,8 +30,8 @@ struct SpeedErrorOptions {
 };
 
 struct SpeedErrorRow {
-    std::string method;    // "ours-cells", "ours-steps", "openvdb-fixed-step", "paper-spheres"
-    std::string setting;   // e.g. "step 0.5, T<1e-4"
+    std::string method;   // "ours-cells", "ours-steps", "openvdb-fixed-step", "paper-spheres"
+    std::string setting;  // e.g. "step 0.5, T<1e-4"
     double msPerEnvmap = 0;
     double relativeRmse = 0;  // RMSE of linear radiance / mean reference radiance
     double psnr = 0;          // dB, docs/conventions.md#metrics, mean over points
@@ -48,7 +48,7 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(
 // speed_error.csv, speed_error.md (a table, then the summary of study/speed_summary.h) and
 // speed_error.svg (time against error, one curve per method) in `directory`.
 // `width` x `height` is the size the rows' envmaps were rendered at.
-void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::string& directory, int width,
-                           int height);
+void writeSpeedErrorReport(const std::vector<SpeedErrorRow>& rows, const std::string& directory,
+                           int width, int height);
 
 }  // namespace lh

@@ -21,14 +21,14 @@ struct SpeedComparison {
 
 // The speed targets for 240x120 envmaps on this machine's 2 cores.
 struct SpeedTargets {
-    int width = 240, height = 120;                  // the envmap size they are set for
-    double envmapsPerSecond = 100;                  // ... within the error bound
+    int width = 240, height = 120;                   // the envmap size they are set for
+    double envmapsPerSecond = 100;                   // ... within the error bound
     std::string paperSetting = "128 spheres/level";  // the paper's own setting (640 spheres in all)
-    double speedup = 20;                            // ... times faster, at equal or lower error
+    double speedup = 20;                             // ... times faster, at equal or lower error
 };
 
 struct SpeedSummary {
-    double errorBound = 1e-3;                       // RMSE / mean radiance
+    double errorBound = 1e-3;                         // RMSE / mean radiance
     std::optional<SpeedErrorRow> fastestWithinBound;  // our fastest row within errorBound
     std::optional<SpeedErrorRow> defaultSetting;      // the row of MarchOptions' defaults
     std::vector<SpeedComparison> againstPaper;        // one per "paper-spheres" row, in order
@@ -45,8 +45,9 @@ struct SpeedSummary {
 
 // Ours are the rows whose method starts with "ours-"; `width` x `height` is the size their
 // envmaps were rendered at.
-SpeedSummary summarizeSpeedAgainstError(const std::vector<SpeedErrorRow>& rows, double errorBound = 1e-3,
-                                        const SpeedTargets& targets = {}, int width = 240, int height = 120);
+SpeedSummary summarizeSpeedAgainstError(const std::vector<SpeedErrorRow>& rows,
+                                        double errorBound = 1e-3, const SpeedTargets& targets = {},
+                                        int width = 240, int height = 120);
 
 // The summary as Markdown: a list, a table, and the targets met or not, appended to
 // speed_error.md.

@@ -16,8 +16,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -27,12 +27,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kMaxAttempts = 25;          // scenes tried per example before giving up
+constexpr int kMaxAttempts = 25;             // scenes tried per example before giving up
 constexpr double kMinCameraClearance = 0.3;  // metres from the reference camera to any solid
-constexpr double kMinMedianDepth = 1.0;   // metres: rejects views that stare at a nearby wall
-constexpr double kMinBrightness = 0.1;    // mean sRGB value of ref (the paper's rule)
+constexpr double kMinMedianDepth = 1.0;      // metres: rejects views that stare at a nearby wall
+constexpr double kMinBrightness = 0.1;       // mean sRGB value of ref (the paper's rule)
 constexpr double kMedianLuminance[2] = {0.05, 0.4};  // auto-exposure's range for ref's median
-constexpr double kEnvmapClearance = 0.3;  // metres from an envmap point to any surface
+constexpr double kEnvmapClearance = 0.3;             // metres from an envmap point to any surface
 
 // Why a scene was rejected (for the manifest's statistics).
 struct Rejected : std::runtime_error {
@@ -57,11 +57,12 @@ void scale(ImageRGB& image, double factor) {
 // distance to the surface seen there, at least 0.3 m from every surface and from each other.
 // This spreads points over the whole depth range, near objects and far ones, instead of the
 // paper's "beyond the median depth" rule, because users insert objects at every depth.
-std::vector<Vec3d> envmapPoints(const Scene& scene, const RayTracer& tracer, const PinholeCamera& ref,
-                                int count, Random& rng) {
+std::vector<Vec3d> envmapPoints(const Scene& scene, const RayTracer& tracer,
+                                const PinholeCamera& ref, int count, Random& rng) {
     std::vector<Vec3d> points;
     for (int tries = 0; tries < 400 && int(points.size()) < count; ++tries) {
-        const Vec3d dir = ref.pixelDirection(rng.uniform(0.1, 0.9) * ref.width, rng.uniform(0.1, 0.9) * ref.height);
+        const Vec3d dir = ref.pixelDirection(rng.uniform(0.1, 0.9) * ref.width,
+                                             rng.uniform(0.1, 0.9) * ref.height);
         const RayHit hit = tracer.intersect(ref.position, dir, 0.0);
         if (!hit.hit) continue;
         const double lo = std::max(0.5, 0.25 * hit.t), hi = 0.85 * hit.t;
@@ -80,12 +81,14 @@ std::vector<Vec3d> envmapPoints(const Scene& scene, const RayTracer& tracer, con
 
 void SynthOptions::validate() const {
     if (count < 1 || count > 1000000) throw InputError("--count must be in [1, 1000000]");
-    if (split != "train" && split != "test") throw InputError("--split must be train or test, got '" + split + "'");
+    if (split != "train" && split != "test")
+        throw InputError("--split must be train or test, got '" + split + "'");
     if (width < 16 || height < 16 || width > 4096 || height > 4096)
         throw InputError("--size must be between 16x16 and 4096x4096");
     if (envWidth != 2 * envHeight || envHeight < 4 || envHeight > 2048)
         throw InputError("--envmap-size must be W x H with W = 2 H and 4 <= H <= 2048");
-    if (envmapsPerExample < 1 || envmapsPerExample > 16) throw InputError("--envmaps must be in [1, 16]");
+    if (envmapsPerExample < 1 || envmapsPerExample > 16)
+        throw InputError("--envmaps must be in [1, 16]");
     if (supersample < 1 || supersample > 8) throw InputError("--supersample must be in [1, 8]");
     if (out.empty()) throw InputError("-o/--output is required");
     if (oracleLevels < 0 || oracleLevels > 8) throw InputError("--oracle-levels must be in [0, 8]");
@@ -115,12 +118,14 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             const RayTracer tracer(scene);
             const ImageRGB depth = renderDepth(tracer, rig.ref);
             std::vector<float> depths;
-            for (std::size_t i = 0; i < depth.pixels.size(); i += 3) depths.push_back(depth.pixels[i]);
+            for (std::size_t i = 0; i < depth.pixels.size(); i += 3)
+                depths.push_back(depth.pixels[i]);
             std::sort(depths.begin(), depths.end());
             if (!std::isfinite(depths.back())) throw Rejected("rays leave the room");
             if (depths[depths.size() / 2] < kMinMedianDepth) throw Rejected("facing a nearby wall");
             Random rng(mixSeed(sceneSeed, 0xE7));
-            const std::vector<Vec3d> points = envmapPoints(scene, tracer, rig.ref, o.envmapsPerExample, rng);
+            const std::vector<Vec3d> points =
+                envmapPoints(scene, tracer, rig.ref, o.envmapsPerExample, rng);
 
             const RadianceField field(scene, tracer, panoramas, o.bake);
             // Auto-exposure as a camera meters: the reference view's median luminance lands
@@ -129,12 +134,14 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             // median at 0.008-0.2, 2.5x darker than the evaluation rooms' 0.05-0.39.
             ImageRGB ref = renderSceneView(tracer, field, rig.ref, o.supersample);
             std::vector<double> luminances;
-            for (std::size_t i = 0; i < ref.pixels.size(); i += 3) luminances.push_back(luminance(&ref.pixels[i]));
+            for (std::size_t i = 0; i < ref.pixels.size(); i += 3)
+                luminances.push_back(luminance(&ref.pixels[i]));
             const auto middle = luminances.begin() + long(luminances.size() / 2);
             std::nth_element(luminances.begin(), middle, luminances.end());
             const double median = *middle;
             if (!(median > 0)) throw Rejected("black reference view");
-            const double target = std::exp(rng.uniform(std::log(kMedianLuminance[0]), std::log(kMedianLuminance[1])));
+            const double target =
+                std::exp(rng.uniform(std::log(kMedianLuminance[0]), std::log(kMedianLuminance[1])));
             scene.exposure = target / median;
             scale(ref, scene.exposure);
             double brightness = 0;
@@ -142,13 +149,15 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             if (brightness / ref.pixels.size() < kMinBrightness) throw Rejected("too dark");
 
             // Everything is rendered; write it under a temporary name, then rename.
-            const fs::path final(directory), temp = final.parent_path() / ("." + summary.id + ".partial");
+            const fs::path final(directory),
+                temp = final.parent_path() / ("." + summary.id + ".partial");
             fs::remove_all(temp);
             fs::create_directories(temp);
             const auto file = [&](const std::string& name) { return (temp / name).string(); };
             writeImage(ref, file(dataset::viewExr("ref")));
             writePng(ref, file(dataset::viewPng("ref")));
-            for (const auto& [name, camera] : {std::pair{"src", &rig.src}, std::pair{"tgt", &rig.tgt}}) {
+            for (const auto& [name, camera] :
+                 {std::pair{"src", &rig.src}, std::pair{"tgt", &rig.tgt}}) {
                 const ImageRGB view = renderSceneView(tracer, field, *camera, o.supersample);
                 writeImage(view, file(dataset::viewExr(name)));
                 writePng(view, file(dataset::viewPng(name)));
@@ -163,17 +172,21 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             cameras.far = double(depths[depths.size() * 99 / 100]);
             for (std::size_t k = 0; k < points.size(); ++k) {
                 const std::string stem = dataset::envmapStem(k);
-                SceneEnvmap env = renderSceneEnvmap(tracer, field, points[k], o.envWidth, o.envHeight, rig.ref, o.supersample);
+                SceneEnvmap env = renderSceneEnvmap(tracer, field, points[k], o.envWidth,
+                                                    o.envHeight, rig.ref, o.supersample);
                 writeImage(env.radiance, file(dataset::envmapExr(k)));
                 writePng(env.radiance, file(dataset::envmapPng(k)));
-                writePng(maskImage(env.observed, o.envWidth, o.envHeight), file(dataset::maskPng(stem)));
+                writePng(maskImage(env.observed, o.envWidth, o.envHeight),
+                         file(dataset::maskPng(stem)));
                 writeImage(env.hitPositions, file(dataset::positionsExr(stem)));
-                cameras.envmaps.push_back({points[k], dataset::envmapExr(k), dataset::positionsExr(stem)});
+                cameras.envmaps.push_back(
+                    {points[k], dataset::envmapExr(k), dataset::positionsExr(stem)});
             }
             writeTextFile(file(dataset::kCameras), camerasToJson(cameras));
             writeTextFile(file(dataset::kScene), sceneToJson(scene, o.bake));
             if (o.oracleLevels > 0) {
-                const VolumeLayout layout = VolumeLayout::fromFarDepth(*cameras.far, o.oracleLevels, o.oracleResolution);
+                const VolumeLayout layout =
+                    VolumeLayout::fromFarDepth(*cameras.far, o.oracleLevels, o.oracleResolution);
                 VolumeSaveOptions half;
                 half.halfPrecision = true;
                 saveVolume(file(dataset::kOracle), oracleVolume(scene, field, layout), half);
@@ -183,13 +196,15 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             summary.seed = sceneSeed;
             summary.rejected = attempt;
             summary.texels = field.texelCount();
-            summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            summary.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             return summary;
         } catch (const Rejected&) {
             continue;  // the next scene seed
         }
     }
-    throw Error("example " + summary.id + ": no acceptable scene in " + std::to_string(kMaxAttempts) + " attempts");
+    throw Error("example " + summary.id + ": no acceptable scene in " +
+                std::to_string(kMaxAttempts) + " attempts");
 }
 
 namespace {
@@ -197,12 +212,20 @@ namespace {
 // The manifest's description of the data set, without timings or examples; every shard of a
 // set must share it.
 nlohmann::json datasetHeader(const SynthOptions& o) {
-    return {{"generator_version", kGeneratorVersion}, {"split", o.split}, {"first_index", o.seed},
-            {"count", o.count}, {"view_size", {o.width, o.height}}, {"envmap_size", {o.envWidth, o.envHeight}},
-            {"envmaps_per_example", o.envmapsPerExample}, {"supersample", o.supersample},
-            {"bake", {{"texel_size", o.bake.texelSize}, {"max_texels", o.bake.maxTexels},
-                      {"gather_rays", o.bake.gatherRays}, {"light_samples", o.bake.lightSamples},
-                      {"bounces", o.bake.bounces}}}};
+    return {{"generator_version", kGeneratorVersion},
+            {"split", o.split},
+            {"first_index", o.seed},
+            {"count", o.count},
+            {"view_size", {o.width, o.height}},
+            {"envmap_size", {o.envWidth, o.envHeight}},
+            {"envmaps_per_example", o.envmapsPerExample},
+            {"supersample", o.supersample},
+            {"bake",
+             {{"texel_size", o.bake.texelSize},
+              {"max_texels", o.bake.maxTexels},
+              {"gather_rays", o.bake.gatherRays},
+              {"light_samples", o.bake.lightSamples},
+              {"bounces", o.bake.bounces}}}};
 }
 
 std::string exampleId(int index) {
@@ -216,7 +239,8 @@ void writeContactSheet(const std::string& out, const std::vector<std::string>& d
     std::vector<std::vector<ImageRGB>> rows;
     for (std::size_t i = 0; i < std::min<std::size_t>(4, dirs.size()); ++i) {
         const fs::path d(dirs[i]);
-        rows.push_back({readImage((d / dataset::viewExr("ref")).string()), readImage((d / dataset::viewExr("src")).string()),
+        rows.push_back({readImage((d / dataset::viewExr("ref")).string()),
+                        readImage((d / dataset::viewExr("src")).string()),
                         readImage((d / dataset::envmapExr(0)).string())});
     }
     writePng(contactSheet(rows, 120), (fs::path(out) / "contact_sheet.png").string());
@@ -247,15 +271,23 @@ void writeDataset(const SynthOptions& o, const std::function<void(int, int, doub
             s = writeExample(seed, dir, o, panoramas);
         }
         dirs.push_back(dir);
-        examples.push_back({{"id", s.id}, {"example_seed", seed}, {"scene_seed", s.seed},
-                            {"rejected_scenes", s.rejected}, {"seconds", s.seconds}, {"texels", s.texels}});
+        examples.push_back({{"id", s.id},
+                            {"example_seed", seed},
+                            {"scene_seed", s.seed},
+                            {"rejected_scenes", s.rejected},
+                            {"seconds", s.seconds},
+                            {"texels", s.texels}});
         if (progress)
-            progress(++done, owned, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            progress(
+                ++done, owned,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (o.shard.active) {
-        nlohmann::json record = {{"kind", "synth"}, {"shard", o.shard.index}, {"shards", o.shard.count},
-                                 {"dataset", datasetHeader(o)}, {"seconds", seconds}, {"examples", examples}};
+        nlohmann::json record = {{"kind", "synth"},         {"shard", o.shard.index},
+                                 {"shards", o.shard.count}, {"dataset", datasetHeader(o)},
+                                 {"seconds", seconds},      {"examples", examples}};
         writeTextFile((fs::path(o.out) / o.shard.recordName()).string(), record.dump(1));
         return;
     }
@@ -269,7 +301,9 @@ void writeDataset(const SynthOptions& o, const std::function<void(int, int, doub
 int mergeDatasetShards(const std::string& dir) {
     const fs::path manifestPath = fs::path(dir) / "manifest.json";
     if (fs::exists(manifestPath))
-        throw FileError("'" + dir + "' is merged already (it holds manifest.json); remove manifest.json to merge again");
+        throw FileError(
+            "'" + dir +
+            "' is merged already (it holds manifest.json); remove manifest.json to merge again");
     const std::vector<nlohmann::json> records = readShardSet(dir, "synth", {"dataset"});
     nlohmann::json manifest = records.front()["dataset"];
     const int count = manifest.value("count", 0);
@@ -280,8 +314,10 @@ int mergeDatasetShards(const std::string& dir) {
         for (const nlohmann::json& e : r["examples"]) {
             const std::string id = e.value("id", "");
             const int index = std::atoi(id.c_str());
-            if (id != exampleId(index) || index < 0 || index >= count || !examples[std::size_t(index)].is_null())
-                throw FileError("shard records in '" + dir + "' list example '" + id + "' out of place");
+            if (id != exampleId(index) || index < 0 || index >= count ||
+                !examples[std::size_t(index)].is_null())
+                throw FileError("shard records in '" + dir + "' list example '" + id +
+                                "' out of place");
             examples[std::size_t(index)] = e;
         }
     }
@@ -291,7 +327,8 @@ int mergeDatasetShards(const std::string& dir) {
             throw FileError("shard records in '" + dir + "' lack example " + exampleId(i));
         const fs::path example = fs::path(dir) / exampleId(i);
         if (!fs::is_regular_file(example / dataset::kScene))
-            throw FileError("example '" + example.string() + "' listed by a shard record is missing or incomplete");
+            throw FileError("example '" + example.string() +
+                            "' listed by a shard record is missing or incomplete");
         dirs.push_back(example.string());
     }
     manifest["seconds"] = seconds;

@@ -20,12 +20,12 @@
 namespace lh::synth {
 
 struct SynthOptions {
-    uint64_t seed = 0;   // first example's index; example i uses seed + i
+    uint64_t seed = 0;  // first example's index; example i uses seed + i
     int count = 10;
     std::string out;
-    std::string split = "train";  // "train" or "test": disjoint seeds (even / odd)
-    int width = 320, height = 240;          // views
-    int envWidth = 240, envHeight = 120;    // envmaps
+    std::string split = "train";          // "train" or "test": disjoint seeds (even / odd)
+    int width = 320, height = 240;        // views
+    int envWidth = 240, envHeight = 120;  // envmaps
     int envmapsPerExample = 2;
     int supersample = 2;  // per axis, for views and envmaps
     std::string hdriDir;
@@ -48,15 +48,15 @@ uint64_t exampleSeed(const std::string& split, uint64_t index);
 
 struct ExampleSummary {
     std::string id;
-    uint64_t seed = 0;       // the scene seed that was accepted
-    int rejected = 0;        // scenes rejected before it (camera too close, facing a wall...)
+    uint64_t seed = 0;  // the scene seed that was accepted
+    int rejected = 0;   // scenes rejected before it (camera too close, facing a wall...)
     double seconds = 0;
     std::size_t texels = 0;
 };
 
 // Writes one example into `directory` (created atomically: a temporary name, then rename).
-ExampleSummary writeExample(uint64_t seed, const std::string& directory, const SynthOptions& options,
-                            PanoramaLibrary& panoramas);
+ExampleSummary writeExample(uint64_t seed, const std::string& directory,
+                            const SynthOptions& options, PanoramaLibrary& panoramas);
 
 // Writes `count` examples, skipping ones already complete (so an interrupted run resumes),
 // then the manifest and a contact sheet. `progress(done, total, secondsSoFar)` after each.

@@ -17,7 +17,8 @@ LightingVolume oracleVolume(const Scene& scene, const RadianceField& field,
             int inside = 0;
             Vec3d radiance(0.0);
             for (int i = 0; i < s * s * s; ++i) {
-                const Vec3d offset((i % s + 0.5) / s - 0.5, ((i / s) % s + 0.5) / s - 0.5, (i / (s * s) + 0.5) / s - 0.5);
+                const Vec3d offset((i % s + 0.5) / s - 0.5, ((i / s) % s + 0.5) / s - 0.5,
+                                   (i / (s * s) + 0.5) / s - 0.5);
                 const Vec3d p = centre + offset * voxel;
                 const int solid = scene.solidAt(p);
                 if (solid < 0) continue;

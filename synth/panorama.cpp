@@ -36,8 +36,10 @@ Vec3d Panorama::radiance(const Vec3d& direction) const { return sampleEnvmap(ima
 const Panorama& PanoramaLibrary::get(const std::string& name) {
     auto it = loaded_.find(name);
     if (it == loaded_.end())
-        it = loaded_.emplace(name, std::make_unique<Panorama>(
-                                       (std::filesystem::path(folder_) / name).string())).first;
+        it = loaded_
+                 .emplace(name, std::make_unique<Panorama>(
+                                    (std::filesystem::path(folder_) / name).string()))
+                 .first;
     return *it->second;
 }
 

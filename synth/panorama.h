@@ -16,8 +16,8 @@ constexpr float kMaxPanoramaRadiance = 50.f;
 
 class Panorama {
 public:
-    // Reads an equirectangular EXR (docs/conventions.md#envmap-layout: row 0 up, centre column forward),
-    // box-filters it down to at most 256 x 128 and clips it at kMaxPanoramaRadiance.
+    // Reads an equirectangular EXR (docs/conventions.md#envmap-layout: row 0 up, centre column
+    // forward), box-filters it down to at most 256 x 128 and clips it at kMaxPanoramaRadiance.
     explicit Panorama(const std::string& path);
     // Bilinear lookup along a unit direction in the panorama's own frame (y down).
     Vec3d radiance(const Vec3d& direction) const;

@@ -2,8 +2,8 @@
 //
 // Every surface is treated as diffuse, so outgoing radiance is emission + albedo / pi *
 // irradiance and does not depend on the view direction; glossy and metallic surfaces take
-// the albedo of equal total reflectance (material.h). Irradiance is stored on texels (about 10 cm) over
-// every non-emitting face and interpolated bilinearly; albedo is evaluated at full resolution
+// the albedo of equal total reflectance (material.h). Irradiance is stored on texels (about 10 cm)
+// over every non-emitting face and interpolated bilinearly; albedo is evaluated at full resolution
 // where a surface is seen. Per texel:
 //   direct   = stratified samples on every emitter with shadow rays, and gather rays that hit
 //              emitters, combined by multiple importance sampling (balance heuristic);
@@ -23,9 +23,9 @@ namespace lh::synth {
 struct BakeOptions {
     double texelSize = 0.1;  // metres; grown if the scene would need more than maxTexels
     int maxTexels = 20000;
-    int gatherRays = 64;     // per texel (a square number stratifies best)
-    int lightSamples = 16;   // per texel and emitter
-    int bounces = 4;         // diffuse interreflections after the direct light
+    int gatherRays = 64;    // per texel (a square number stratifies best)
+    int lightSamples = 16;  // per texel and emitter
+    int bounces = 4;        // diffuse interreflections after the direct light
 };
 
 class RadianceField {
@@ -68,7 +68,7 @@ private:
     const Scene& scene_;
     std::vector<const Panorama*> windowPanoramas_;  // per WindowView
     std::vector<int> decals_;
-    std::vector<int> faceStart_;   // per primitive: index of its first patch (-1: none)
+    std::vector<int> faceStart_;  // per primitive: index of its first patch (-1: none)
     std::vector<Patch> patches_;
     std::vector<Vec3d> irradiance_;  // per texel
     double texelSize_ = 0.1;

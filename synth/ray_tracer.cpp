@@ -38,8 +38,9 @@ Mesh triangulate(const Primitive& p) {
             for (int i = 0; i <= kPolar; ++i)
                 for (int j = 0; j < kAround; ++j) {
                     const double v = M_PI * i / kPolar, u = 2 * M_PI * j / kAround;
-                    m.vertex(p.toWorld(Vec3d(std::sin(v) * std::cos(u), std::cos(v),
-                                             std::sin(v) * std::sin(u)) * p.half.x()));
+                    m.vertex(p.toWorld(
+                        Vec3d(std::sin(v) * std::cos(u), std::cos(v), std::sin(v) * std::sin(u)) *
+                        p.half.x()));
                 }
             for (int i = 0; i < kPolar; ++i)
                 for (int j = 0; j < kAround; ++j) {
@@ -60,7 +61,8 @@ Mesh triangulate(const Primitive& p) {
             for (int j = 0; j < kAround; ++j) {
                 const unsigned a = j, b = (j + 1) % kAround;
                 m.quad(a, b, b + kAround, a + kAround);
-                m.triangles.insert(m.triangles.end(), {bottomCentre, b, a, topCentre, a + kAround, b + kAround});
+                m.triangles.insert(m.triangles.end(),
+                                   {bottomCentre, b, a, topCentre, a + kAround, b + kAround});
             }
             break;
         }

@@ -90,7 +90,8 @@ Vec3d Texture::albedo(const Vec3d& local, const Vec3d& localNormal) const {
         case TextureKind::Stripes:
             return fract(q.x()) < 0.5 ? colorA : colorB;
         case TextureKind::Noise: {
-            const double n = 0.65 * valueNoise(q * 2.0, noiseSeed) + 0.35 * valueNoise(q * 6.0, noiseSeed + 1);
+            const double n =
+                0.65 * valueNoise(q * 2.0, noiseSeed) + 0.35 * valueNoise(q * 6.0, noiseSeed + 1);
             return mix(colorA, colorB, n);
         }
         case TextureKind::Wood: {
@@ -102,7 +103,8 @@ Vec3d Texture::albedo(const Vec3d& local, const Vec3d& localNormal) const {
         case TextureKind::Brick:
             return brickAlbedo(*this, q, localNormal);
         case TextureKind::Bands:
-            return mix(colorA, colorB, 0.5 + 0.5 * std::sin(2 * M_PI * (q.x() + q.y() + q.z()) / std::sqrt(3.0)));
+            return mix(colorA, colorB,
+                       0.5 + 0.5 * std::sin(2 * M_PI * (q.x() + q.y() + q.z()) / std::sqrt(3.0)));
         case TextureKind::Rings:
             return mix(colorA, colorB, 0.5 + 0.5 * std::sin(2 * M_PI * q.length()));
     }
@@ -111,9 +113,12 @@ Vec3d Texture::albedo(const Vec3d& local, const Vec3d& localNormal) const {
 
 int faceCount(const Primitive& p) {
     switch (p.shape) {
-        case Shape::Box: return 6;
-        case Shape::Cylinder: return 3;
-        default: return 1;
+        case Shape::Box:
+            return 6;
+        case Shape::Cylinder:
+            return 3;
+        default:
+            return 1;
     }
 }
 
@@ -158,8 +163,10 @@ SurfacePoint surfaceAt(const Primitive& p, int index, int face, double u, double
                 return makePoint(p, index, face, u, v, radial * r + Vec3d(0, v, 0), radial);
             }
             // Caps are parameterised over their bounding square; corners fold onto the rim.
-            const double y = face == 1 ? -h : h, rho = std::hypot(u, v), fold = rho > r ? r / rho : 1.0;
-            return makePoint(p, index, face, u, v, Vec3d(u * fold, y, v * fold), Vec3d(0, face == 1 ? -1 : 1, 0));
+            const double y = face == 1 ? -h : h, rho = std::hypot(u, v),
+                         fold = rho > r ? r / rho : 1.0;
+            return makePoint(p, index, face, u, v, Vec3d(u * fold, y, v * fold),
+                             Vec3d(0, face == 1 ? -1 : 1, 0));
         }
         case Shape::Quad:
             return makePoint(p, index, face, u, v, Vec3d(u, v, 0.0), Vec3d(0, 0, 1));
@@ -190,7 +197,8 @@ SurfacePoint nearestSurfacePoint(const Primitive& p, int index, const Vec3d& wor
         }
         case Shape::Sphere: {
             const Vec3d n = l.lengthSqr() > 0 ? l.unit() : Vec3d(0, -1, 0);
-            return surfaceAt(p, index, 0, std::atan2(n.z(), n.x()), std::acos(std::clamp(n.y(), -1.0, 1.0)));
+            return surfaceAt(p, index, 0, std::atan2(n.z(), n.x()),
+                             std::acos(std::clamp(n.y(), -1.0, 1.0)));
         }
         case Shape::Cylinder: {
             const double r = p.half.x(), h = p.half.y();
@@ -244,10 +252,14 @@ double signedDistance(const Primitive& p, const Vec3d& world) {
 double surfaceArea(const Primitive& p) {
     const Vec3d h = p.half;
     switch (p.shape) {
-        case Shape::Box: return 8.0 * (h.x() * h.y() + h.y() * h.z() + h.z() * h.x());
-        case Shape::Sphere: return 4.0 * M_PI * h.x() * h.x();
-        case Shape::Cylinder: return 4.0 * M_PI * h.x() * h.y() + 2.0 * M_PI * h.x() * h.x();
-        case Shape::Quad: return 4.0 * h.x() * h.y();
+        case Shape::Box:
+            return 8.0 * (h.x() * h.y() + h.y() * h.z() + h.z() * h.x());
+        case Shape::Sphere:
+            return 4.0 * M_PI * h.x() * h.x();
+        case Shape::Cylinder:
+            return 4.0 * M_PI * h.x() * h.y() + 2.0 * M_PI * h.x() * h.x();
+        case Shape::Quad:
+            return 4.0 * h.x() * h.y();
     }
     return 0;
 }

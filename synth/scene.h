@@ -57,7 +57,7 @@ struct Primitive {
     Vec3d half{0.5, 0.5, 0.5};
     bool inverted = false;  // the room: free inside, solid outside, faces point inwards
     Texture texture;
-    Material material;  // diffuse unless the generator makes it glossy or metallic
+    Material material;                  // diffuse unless the generator makes it glossy or metallic
     std::vector<Texture> faceTextures;  // optional, one per face (the room: walls, floor, ceiling)
     Emission emission = Emission::None;
     Vec3d radiance{0.0, 0.0, 0.0};  // Constant emission, linear
@@ -76,9 +76,9 @@ struct Primitive {
 // What a window shows: a panorama seen from `viewCentre` (the room's centre), so that its
 // radiance depends on the point of the window, not on who looks at it.
 struct WindowView {
-    std::string panorama;       // file name in the panorama folder
-    double yaw = 0;             // radians, turns the panorama about the room's up axis
-    double scale = 1;           // radiance multiplier
+    std::string panorama;  // file name in the panorama folder
+    double yaw = 0;        // radians, turns the panorama about the room's up axis
+    double scale = 1;      // radiance multiplier
     Vec3d viewCentre{0.0, 0.0, 0.0};
     Mat3d roomToWorld = Mat3d::identity();  // the room's axes (y down), for an upright panorama
 };

@@ -16,9 +16,14 @@ struct RoomSize {
 };
 
 Vec3d hsvToLinear(double h, double s, double v) {
-    const double c = v * s, hp = std::fmod(h * 6.0, 6.0), x = c * (1 - std::abs(std::fmod(hp, 2.0) - 1));
-    Vec3d rgb = hp < 1 ? Vec3d(c, x, 0) : hp < 2 ? Vec3d(x, c, 0) : hp < 3 ? Vec3d(0, c, x)
-              : hp < 4 ? Vec3d(0, x, c) : hp < 5 ? Vec3d(x, 0, c) : Vec3d(c, 0, x);
+    const double c = v * s, hp = std::fmod(h * 6.0, 6.0),
+                 x = c * (1 - std::abs(std::fmod(hp, 2.0) - 1));
+    Vec3d rgb = hp < 1   ? Vec3d(c, x, 0)
+                : hp < 2 ? Vec3d(x, c, 0)
+                : hp < 3 ? Vec3d(0, c, x)
+                : hp < 4 ? Vec3d(0, x, c)
+                : hp < 5 ? Vec3d(x, 0, c)
+                         : Vec3d(c, 0, x);
     rgb += Vec3d(v - c);
     for (int i = 0; i < 3; ++i) rgb[i] = std::pow(rgb[i], 2.2);  // perceptual -> linear albedo
     return rgb;
@@ -38,7 +43,9 @@ Texture randomTexture(Random& rng) {
     t.noiseSeed = uint32_t(rng.next());
     if (t.kind == TextureKind::Brick) {
         // Bricks 0.25-0.5 m long (with their mortar), mostly red-brown in light grey mortar.
-        if (rng.chance(0.7)) t.colorA = hsvToLinear(rng.uniform(0.0, 0.08), rng.uniform(0.4, 0.8), rng.uniform(0.45, 0.8));
+        if (rng.chance(0.7))
+            t.colorA =
+                hsvToLinear(rng.uniform(0.0, 0.08), rng.uniform(0.4, 0.8), rng.uniform(0.45, 0.8));
         t.colorB = hsvToLinear(rng.uniform(), rng.uniform(0.0, 0.1), rng.uniform(0.6, 0.85));
         t.scale = rng.uniform(0.25, 0.5);
     }
@@ -60,7 +67,8 @@ void randomMaterial(Random& rng, Primitive& p) {
     }
     m.kind = MaterialKind::Metal;
     // Steel and aluminium (grey), brass, gold and copper (warm): 0.5-0.95 reflectance.
-    m.f0 = hsvToLinear(rng.uniform(0.02, 0.14), rng.chance(0.5) ? rng.uniform(0.0, 0.1) : rng.uniform(0.3, 0.6),
+    m.f0 = hsvToLinear(rng.uniform(0.02, 0.14),
+                       rng.chance(0.5) ? rng.uniform(0.0, 0.1) : rng.uniform(0.3, 0.6),
                        rng.uniform(0.73, 0.97));
     p.texture = Texture{};
     p.texture.colorA = p.texture.colorB = m.f0 * 0.05;
@@ -88,16 +96,29 @@ Mat3d rotationX(double angle) {
 
 // A quad on the room's wall face `face` (0: x-, 1: x+, 4: z-, 5: z+) or ceiling (2), facing
 // into the room; (along, down) is its centre in the face's in-plane coordinates.
-Primitive wallQuad(const RoomSize& room, int face, double along, double alongHalf, double y, double yHalf) {
+Primitive wallQuad(const RoomSize& room, int face, double along, double alongHalf, double y,
+                   double yHalf) {
     Primitive q;
     q.shape = Shape::Quad;
     q.half = Vec3d(alongHalf, yHalf, 0);
     // Local x runs along the wall, local y down the wall, local z into the room.
     switch (face) {
-        case 0: q.centre = Vec3d(-room.width / 2, y, along); q.rotation = Mat3d(0.0, 0.0, 1.0, 0.0, 1.0, 0.0, -1.0, 0.0, 0.0); break;
-        case 1: q.centre = Vec3d(room.width / 2, y, along); q.rotation = Mat3d(0.0, 0.0, -1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0); break;
-        case 4: q.centre = Vec3d(along, y, -room.depth / 2); q.rotation = Mat3d::identity(); break;
-        case 5: q.centre = Vec3d(along, y, room.depth / 2); q.rotation = Mat3d(-1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0); break;
+        case 0:
+            q.centre = Vec3d(-room.width / 2, y, along);
+            q.rotation = Mat3d(0.0, 0.0, 1.0, 0.0, 1.0, 0.0, -1.0, 0.0, 0.0);
+            break;
+        case 1:
+            q.centre = Vec3d(room.width / 2, y, along);
+            q.rotation = Mat3d(0.0, 0.0, -1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0);
+            break;
+        case 4:
+            q.centre = Vec3d(along, y, -room.depth / 2);
+            q.rotation = Mat3d::identity();
+            break;
+        case 5:
+            q.centre = Vec3d(along, y, room.depth / 2);
+            q.rotation = Mat3d(-1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0);
+            break;
         default:  // ceiling: local z points down (+y), into the room
             q.centre = Vec3d(along, -room.height, y);
             q.rotation = Mat3d(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0);
@@ -111,10 +132,10 @@ Primitive wallQuad(const RoomSize& room, int face, double along, double alongHal
 // survive auto-exposure; these make the brightest envmap pixels reach about 35-1200
 // (median about 120) and their 99.5th percentile 0.5-60, near the evaluation rooms'
 // 35-1450 (median 214) and 1.6-80.
-constexpr double kPanelRadiance[2] = {30, 150};       // ceiling panels, 0.09-1 m^2
-constexpr double kLampRadiance[2] = {150, 900};       // hanging spheres, 5-15 cm radius
-constexpr double kWindowPanelRadiance[2] = {20, 100}; // uniform windows
-constexpr double kPanoramaScale[2] = {1.0, 3.0};      // multiplier of a window's panorama
+constexpr double kPanelRadiance[2] = {30, 150};        // ceiling panels, 0.09-1 m^2
+constexpr double kLampRadiance[2] = {150, 900};        // hanging spheres, 5-15 cm radius
+constexpr double kWindowPanelRadiance[2] = {20, 100};  // uniform windows
+constexpr double kPanoramaScale[2] = {1.0, 3.0};       // multiplier of a window's panorama
 constexpr double kBrightPanelWindowChance = 0.15;
 constexpr double kWhiteCeilingChance = 0.35;
 
@@ -134,7 +155,8 @@ bool overlaps(const std::vector<Footprint>& placed, const Footprint& f) {
 
 GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& panoramas, int width,
                              int height) {
-    if (panoramas.empty()) throw InputError("scene generator: no panoramas to show through windows");
+    if (panoramas.empty())
+        throw InputError("scene generator: no panoramas to show through windows");
     Random rng(seed);
     Scene scene;
     scene.seed = seed;
@@ -173,10 +195,12 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
         const int face = std::vector<int>{0, 1, 4, 5}[rng.integer(0, 3)];
         const double length = wallLength(room, face);
         const double halfWidth = rng.uniform(0.4, std::min(1.0, length / 2 - 0.3));
-        const double along = rng.uniform(-length / 2 + halfWidth + 0.2, length / 2 - halfWidth - 0.2);
+        const double along =
+            rng.uniform(-length / 2 + halfWidth + 0.2, length / 2 - halfWidth - 0.2);
         bool clash = false;
         for (const auto& [f, span] : usedSpans)
-            clash |= f == face && along + halfWidth > span.first - 0.2 && along - halfWidth < span.second + 0.2;
+            clash |= f == face && along + halfWidth > span.first - 0.2 &&
+                     along - halfWidth < span.second + 0.2;
         if (clash) continue;
         usedSpans.push_back({face, {along - halfWidth, along + halfWidth}});
         const double halfHeight = rng.uniform(0.4, std::min(0.8, (room.height - 1.1) / 2));
@@ -187,7 +211,8 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
         if (rng.chance(kBrightPanelWindowChance)) {
             // Frosted glass or a light box: a bright uniform panel, white to slightly cool.
             q.emission = Emission::Constant;
-            q.radiance = Vec3d(0.9, 0.95, 1.0) * rng.uniform(kWindowPanelRadiance[0], kWindowPanelRadiance[1]);
+            q.radiance = Vec3d(0.9, 0.95, 1.0) *
+                         rng.uniform(kWindowPanelRadiance[0], kWindowPanelRadiance[1]);
             scene.primitives.push_back(q);
             continue;
         }
@@ -222,11 +247,14 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
             p.half = Vec3d(rng.uniform(0.12, 0.4), 0, 0);
             p.label = "sphere";
         }
-        const double footprint = p.shape == Shape::Box ? std::hypot(p.half.x(), p.half.z()) : p.half.x();
+        const double footprint =
+            p.shape == Shape::Box ? std::hypot(p.half.x(), p.half.z()) : p.half.x();
         const double height = p.shape == Shape::Sphere ? p.half.x() : p.half.y();
         if (2 * footprint + 0.2 > std::min(room.width, room.depth)) continue;
-        const Footprint f{rng.uniform(-room.width / 2 + footprint + 0.05, room.width / 2 - footprint - 0.05),
-                          rng.uniform(-room.depth / 2 + footprint + 0.05, room.depth / 2 - footprint - 0.05), footprint};
+        const Footprint f{
+            rng.uniform(-room.width / 2 + footprint + 0.05, room.width / 2 - footprint - 0.05),
+            rng.uniform(-room.depth / 2 + footprint + 0.05, room.depth / 2 - footprint - 0.05),
+            footprint};
         if (overlaps(placed, f)) continue;
         placed.push_back(f);
         p.centre = Vec3d(f.x, -height, f.z);
@@ -243,8 +271,9 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
         const Vec3d white(1.0, 0.97 - 0.12 * warmth, 0.95 - 0.3 * warmth);
         if (rng.chance(0.5)) {
             const double hx = rng.uniform(0.15, 0.5), hz = rng.uniform(0.15, 0.5);
-            Primitive q = wallQuad(room, 2, rng.uniform(-room.width / 2 + hx + 0.2, room.width / 2 - hx - 0.2), hx,
-                                   rng.uniform(-room.depth / 2 + hz + 0.2, room.depth / 2 - hz - 0.2), hz);
+            Primitive q = wallQuad(
+                room, 2, rng.uniform(-room.width / 2 + hx + 0.2, room.width / 2 - hx - 0.2), hx,
+                rng.uniform(-room.depth / 2 + hz + 0.2, room.depth / 2 - hz - 0.2), hz);
             q.emission = Emission::Constant;
             q.radiance = white * rng.uniform(kPanelRadiance[0], kPanelRadiance[1]);
             q.label = "panel";
@@ -271,10 +300,12 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
     Vec3d eye(0.0);
     for (int tries = 0; tries < 200; ++tries) {
         const double back = -room.depth / 2 + rng.uniform(0.5, 0.45 * room.depth);
-        eye = Vec3d(rng.uniform(-0.35, 0.35) * room.width, -rng.uniform(1.2, 1.8), facingMinusZ ? -back : back);
+        eye = Vec3d(rng.uniform(-0.35, 0.35) * room.width, -rng.uniform(1.2, 1.8),
+                    facingMinusZ ? -back : back);
         if (scene.distanceToSolid(eye) > 0.5) break;
     }
-    const double yaw = rng.uniform(-kCameraYawSpread, kCameraYawSpread) + (facingMinusZ ? M_PI : 0.0);
+    const double yaw =
+        rng.uniform(-kCameraYawSpread, kCameraYawSpread) + (facingMinusZ ? M_PI : 0.0);
     const Mat3d camToRoom = rotationY(yaw) * rotationX(rng.uniform(-0.17, 0.09));
     const Mat3d roomToWorld = camToRoom.transpose();
     for (Primitive& p : scene.primitives) {
@@ -299,8 +330,10 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
     out.rig.src = ref;
     out.rig.src.position = Vec3d(rng.uniform(0.05, 0.15), 0, 0);
     out.rig.tgt = ref;
-    out.rig.tgt.position = Vec3d(rng.uniform(-0.15, 0.25), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.2));
-    out.rig.tgt.rotation = rotationY(rng.uniform(-0.09, 0.09)) * rotationX(rng.uniform(-0.05, 0.05));
+    out.rig.tgt.position =
+        Vec3d(rng.uniform(-0.15, 0.25), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.2));
+    out.rig.tgt.rotation =
+        rotationY(rng.uniform(-0.09, 0.09)) * rotationX(rng.uniform(-0.05, 0.05));
     return out;
 }
 

@@ -35,7 +35,7 @@ struct GeneratedScene {
 };
 
 // `panoramas`: file names to choose window views from. Image size of the cameras in pixels.
-GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& panoramas,
-                             int width, int height);
+GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& panoramas, int width,
+                             int height);
 
 }  // namespace lh::synth

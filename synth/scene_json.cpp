@@ -14,7 +14,9 @@ using nlohmann::json;
 namespace {
 
 json vec(const Vec3d& v) { return {v.x(), v.y(), v.z()}; }
-Vec3d vec(const json& j) { return Vec3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()); }
+Vec3d vec(const json& j) {
+    return Vec3d(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+}
 
 json mat(const Mat3d& m) {
     return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
@@ -26,7 +28,8 @@ Mat3d mat(const json& j) {
     return m;
 }
 
-const char* kTextureNames[] = {"plain", "checker", "stripes", "noise", "wood", "brick", "bands", "rings"};
+const char* kTextureNames[] = {"plain", "checker", "stripes", "noise",
+                               "wood",  "brick",   "bands",   "rings"};
 const char* kMaterialNames[] = {"diffuse", "glossy", "metal"};
 const char* kShapeNames[] = {"box", "sphere", "cylinder", "quad"};
 const char* kEmissionNames[] = {"none", "constant", "window"};
@@ -39,8 +42,11 @@ int indexOf(const char* const (&names)[N], const std::string& name) {
 }
 
 json textureJson(const Texture& t) {
-    return {{"kind", kTextureNames[int(t.kind)]}, {"color_a", vec(t.colorA)}, {"color_b", vec(t.colorB)},
-            {"scale", t.scale}, {"noise_seed", t.noiseSeed}};
+    return {{"kind", kTextureNames[int(t.kind)]},
+            {"color_a", vec(t.colorA)},
+            {"color_b", vec(t.colorB)},
+            {"scale", t.scale},
+            {"noise_seed", t.noiseSeed}};
 }
 
 Texture textureFrom(const json& j) {
@@ -70,11 +76,17 @@ Material materialFrom(const json& j) {
 std::string sceneToJson(const Scene& scene, const BakeOptions& bake) {
     json prims = json::array();
     for (const Primitive& p : scene.primitives) {
-        json o = {{"shape", kShapeNames[int(p.shape)]}, {"label", p.label}, {"centre", vec(p.centre)},
-                  {"rotation", mat(p.rotation)}, {"half", vec(p.half)}, {"inverted", p.inverted},
-                  {"texture", textureJson(p.texture)}, {"material", materialJson(p.material)},
+        json o = {{"shape", kShapeNames[int(p.shape)]},
+                  {"label", p.label},
+                  {"centre", vec(p.centre)},
+                  {"rotation", mat(p.rotation)},
+                  {"half", vec(p.half)},
+                  {"inverted", p.inverted},
+                  {"texture", textureJson(p.texture)},
+                  {"material", materialJson(p.material)},
                   {"emission", kEmissionNames[int(p.emission)]},
-                  {"radiance", vec(p.radiance)}, {"window", p.window}};
+                  {"radiance", vec(p.radiance)},
+                  {"window", p.window}};
         if (!p.faceTextures.empty()) {
             o["face_textures"] = json::array();
             for (const Texture& t : p.faceTextures) o["face_textures"].push_back(textureJson(t));
@@ -83,14 +95,23 @@ std::string sceneToJson(const Scene& scene, const BakeOptions& bake) {
     }
     json windows = json::array();
     for (const WindowView& w : scene.windows)
-        windows.push_back({{"panorama", w.panorama}, {"yaw", w.yaw}, {"scale", w.scale},
-                           {"view_centre", vec(w.viewCentre)}, {"room_to_world", mat(w.roomToWorld)}});
-    json j = {{"seed", scene.seed}, {"generator_version", scene.generatorVersion},
-              {"exposure", scene.exposure}, {"room_index", scene.roomIndex},
-              {"primitives", prims}, {"windows", windows},
-              {"bake", {{"texel_size", bake.texelSize}, {"max_texels", bake.maxTexels},
-                        {"gather_rays", bake.gatherRays}, {"light_samples", bake.lightSamples},
-                        {"bounces", bake.bounces}}},
+        windows.push_back({{"panorama", w.panorama},
+                           {"yaw", w.yaw},
+                           {"scale", w.scale},
+                           {"view_centre", vec(w.viewCentre)},
+                           {"room_to_world", mat(w.roomToWorld)}});
+    json j = {{"seed", scene.seed},
+              {"generator_version", scene.generatorVersion},
+              {"exposure", scene.exposure},
+              {"room_index", scene.roomIndex},
+              {"primitives", prims},
+              {"windows", windows},
+              {"bake",
+               {{"texel_size", bake.texelSize},
+                {"max_texels", bake.maxTexels},
+                {"gather_rays", bake.gatherRays},
+                {"light_samples", bake.lightSamples},
+                {"bounces", bake.bounces}}},
               {"frame", "reference camera (OpenCV axes: +x right, +y down, +z forward), metres"}};
     return j.dump(1);
 }
@@ -138,10 +159,12 @@ Scene sceneFromJson(const std::string& text, const std::string& sourceName, Bake
             bake->lightSamples = b.at("light_samples").get<int>();
             bake->bounces = b.at("bounces").get<int>();
         }
-        if (s.roomIndex < 0 || s.roomIndex >= int(s.primitives.size()) || !s.primitives[s.roomIndex].inverted)
+        if (s.roomIndex < 0 || s.roomIndex >= int(s.primitives.size()) ||
+            !s.primitives[s.roomIndex].inverted)
             throw std::invalid_argument("room_index does not name the room");
         for (const Primitive& p : s.primitives)
-            if (p.emission == Emission::Window && (p.window < 0 || p.window >= int(s.windows.size())))
+            if (p.emission == Emission::Window &&
+                (p.window < 0 || p.window >= int(s.windows.size())))
                 throw std::invalid_argument("a window names a missing window view");
         return s;
     } catch (const std::exception& e) {

@@ -13,7 +13,8 @@ namespace lh::synth {
 // The bake settings travel with the scene so that the oracle re-bakes the same light.
 std::string sceneToJson(const Scene& scene, const BakeOptions& bake);
 // Throws FileError naming `sourceName` if the text is not a valid scene description.
-Scene sceneFromJson(const std::string& text, const std::string& sourceName, BakeOptions* bake = nullptr);
+Scene sceneFromJson(const std::string& text, const std::string& sourceName,
+                    BakeOptions* bake = nullptr);
 Scene loadScene(const std::string& path, BakeOptions* bake = nullptr);
 
 }  // namespace lh::synth

@@ -50,7 +50,8 @@ ImageRGB renderSceneView(const RayTracer& tracer, const RadianceField& field,
         for (int sy = 0; sy < supersample; ++sy)
             for (int sx = 0; sx < supersample; ++sx) {
                 const double px = x + (sx + 0.5) / supersample, py = y + (sy + 0.5) / supersample;
-                sum += traceViewRadiance(tracer, field, camera.position, camera.pixelDirection(px, py));
+                sum += traceViewRadiance(tracer, field, camera.position,
+                                         camera.pixelDirection(px, py));
             }
         store(image, x, y, sum / double(supersample * supersample));
     });
@@ -95,10 +96,12 @@ SceneEnvmap renderSceneEnvmap(const RayTracer& tracer, const RadianceField& fiel
                 sum += traceRadiance(tracer, field, position, d);
             }
         store(env.radiance, x, y, sum / double(supersample * supersample));
-        const RayHit hit = tracer.intersect(position, envmapPixelDirection(y, x, width, height), 0.0);
+        const RayHit hit =
+            tracer.intersect(position, envmapPixelDirection(y, x, width, height), 0.0);
         if (hit.hit) {
             store(env.hitPositions, x, y, hit.point.position);
-            env.observed[std::size_t(y) * width + x] = visibleFrom(tracer, reference, hit.point.position);
+            env.observed[std::size_t(y) * width + x] =
+                visibleFrom(tracer, reference, hit.point.position);
         }
     });
     return env;

@@ -24,8 +24,8 @@ ImageRGB renderDepth(const RayTracer& tracer, const PinholeCamera& camera);
 // as diffuse surfaces of equal reflectance, material.h): the quantity a lighting volume
 // stores, so the oracle volume reproduces them up to its resolution.
 struct SceneEnvmap {
-    ImageRGB radiance;            // linear, supersampled
-    ImageRGB hitPositions;        // world position of the first hit along each pixel centre
+    ImageRGB radiance;              // linear, supersampled
+    ImageRGB hitPositions;          // world position of the first hit along each pixel centre
     std::vector<uint8_t> observed;  // 1 where that hit is visible in the reference view
 };
 

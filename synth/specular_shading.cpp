@@ -27,7 +27,8 @@ Random rayStream(const Vec3d& position, const Vec3d& dir) {
 
 }  // namespace
 
-Vec3d viewRadiance(const RayTracer& tracer, const RadianceField& field, const RayHit& hit, const Vec3d& dir) {
+Vec3d viewRadiance(const RayTracer& tracer, const RadianceField& field, const RayHit& hit,
+                   const Vec3d& dir) {
     const SurfacePoint& point = hit.point;
     const Primitive& prim = field.scene().primitives[point.primitive];
     if (!prim.material.isSpecular() || field.isEmitting(point)) return field.radiance(point);
@@ -51,10 +52,13 @@ Vec3d viewRadiance(const RayTracer& tracer, const RadianceField& field, const Ra
     for (int s = 0; s < rays; ++s) {
         Vec3d w = mirror;
         if (roughness > 0) {
-            const double u1 = (s / strata + rng.uniform()) / strata, u2 = (s % strata + rng.uniform()) / strata;
+            const double u1 = (s / strata + rng.uniform()) / strata,
+                         u2 = (s % strata + rng.uniform()) / strata;
             const double cosTheta = 1 - u1 * (1 - std::cos(roughness)), phi = 2 * M_PI * u2;
             const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
-            w = (t * (sinTheta * std::cos(phi)) + b * (sinTheta * std::sin(phi)) + mirror * cosTheta).unit();
+            w = (t * (sinTheta * std::cos(phi)) + b * (sinTheta * std::sin(phi)) +
+                 mirror * cosTheta)
+                    .unit();
             if (w.dot(n) <= 0) w = (w - n * (2 * w.dot(n))).unit();
         }
         const RayHit r = tracer.intersect(origin, w, 0.0);

@@ -16,6 +16,7 @@ constexpr int kGlossyRays = 4;
 // Radiance (linear, times the scene's exposure) leaving `hit` towards the viewer, seen along
 // the unit direction `dir` (from the viewer to the hit). The glossy jitter is seeded by the
 // hit and the direction, so a picture is the same on every run and thread count.
-Vec3d viewRadiance(const RayTracer& tracer, const RadianceField& field, const RayHit& hit, const Vec3d& dir);
+Vec3d viewRadiance(const RayTracer& tracer, const RadianceField& field, const RayHit& hit,
+                   const Vec3d& dir);
 
 }  // namespace lh::synth

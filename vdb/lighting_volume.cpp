@@ -61,11 +61,12 @@ LightingVolume LightingVolume::fromLayout(const VolumeLayout& layout) {
 }
 
 void LightingVolume::fillLevel(int k, const std::function<MediumSample(const Vec3d&)>& field) {
-    if (k < 0 || k >= int(levels.size())) throw InputError("fillLevel: no level " + std::to_string(k));
+    if (k < 0 || k >= int(levels.size()))
+        throw InputError("fillLevel: no level " + std::to_string(k));
     VolumeLevel& level = levels[k];
     openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> sigma(level.domain, 0.f);
     openvdb::tools::Dense<openvdb::Vec3s, openvdb::tools::LayoutXYZ> color(level.domain,
-                                                                         openvdb::Vec3s(0.f));
+                                                                           openvdb::Vec3s(0.f));
     const auto& xf = level.transform();
     const openvdb::CoordBBox bbox = level.domain;
     tbb::parallel_for(tbb::blocked_range<int>(bbox.min().x(), bbox.max().x() + 1),
@@ -76,8 +77,8 @@ void LightingVolume::fillLevel(int k, const std::function<MediumSample(const Vec
                                       const openvdb::Coord ijk(i, j, l);
                                       MediumSample s = field(xf.indexToWorld(ijk));
                                       sigma.setValue(ijk, s.sigma);
-                                      color.setValue(ijk, s.sigma > 0.f ? s.color
-                                                                        : openvdb::Vec3s(0.f));
+                                      color.setValue(ijk,
+                                                     s.sigma > 0.f ? s.color : openvdb::Vec3s(0.f));
                                   }
                       });
     level.density->clear();

@@ -17,7 +17,7 @@ namespace lh {
 
 // Medium at one point.
 struct MediumSample {
-    float sigma = 0.f;                   // extinction, per scene unit
+    float sigma = 0.f;                    // extinction, per scene unit
     openvdb::Vec3s color{0.f, 0.f, 0.f};  // linear radiance
 };
 
@@ -39,7 +39,7 @@ struct VolumeLevel {
 
 class LightingVolume {
 public:
-    std::vector<VolumeLevel> levels;  // coarsest first; finest last
+    std::vector<VolumeLevel> levels;         // coarsest first; finest last
     std::optional<VolumeLayout> layout;      // set when the volume follows the nested layout
     std::optional<PinholeCamera> refCamera;  // set when known (predicted volumes)
 

@@ -35,7 +35,8 @@ Mpi Mpi::create(const PinholeCamera& camera, double nearDepth, double farDepth, 
     Mpi mpi;
     mpi.camera = camera;
     mpi.planeDepths = disparityLinearDepths(nearDepth, farDepth, planes);
-    mpi.planes.assign(planes, std::vector<float>(std::size_t(camera.width) * camera.height * 4, 0.f));
+    mpi.planes.assign(planes,
+                      std::vector<float>(std::size_t(camera.width) * camera.height * 4, 0.f));
     return mpi;
 }
 
@@ -104,7 +105,8 @@ openvdb::GridPtrVec mpiToGrids(const Mpi& mpi) {
         rgb->setName("mpi_rgb" + planeSuffix(d));
         alpha->setName("mpi_alpha" + planeSuffix(d));
         rgb->setVectorType(openvdb::VEC_INVARIANT);
-        for (openvdb::GridBase::Ptr g : {openvdb::GridBase::Ptr(rgb), openvdb::GridBase::Ptr(alpha)}) {
+        for (openvdb::GridBase::Ptr g :
+             {openvdb::GridBase::Ptr(rgb), openvdb::GridBase::Ptr(alpha)}) {
             g->insertMeta("mpi_plane", openvdb::Int32Metadata(d));
             g->insertMeta("mpi_depth", openvdb::DoubleMetadata(mpi.planeDepths[d]));
             grids.push_back(g);
@@ -121,7 +123,8 @@ Mpi mpiFromGrids(const openvdb::GridPtrVec& grids, const PinholeCamera& camera,
         const bool isRgb = name.rfind("mpi_rgb", 0) == 0, isAlpha = name.rfind("mpi_alpha", 0) == 0;
         if (!isRgb && !isAlpha) continue;
         auto plane = g->getMetadata<openvdb::Int32Metadata>("mpi_plane");
-        if (!plane) throw FileError(sourceName + ": grid '" + name + "' lacks 'mpi_plane' metadata");
+        if (!plane)
+            throw FileError(sourceName + ": grid '" + name + "' lacks 'mpi_plane' metadata");
         auto& entry = byPlane[plane->value()];
         if (isRgb) {
             entry.first = openvdb::gridPtrCast<openvdb::Vec3SGrid>(g);
@@ -135,17 +138,22 @@ Mpi mpiFromGrids(const openvdb::GridPtrVec& grids, const PinholeCamera& camera,
                                 ", expected a FloatGrid");
         }
     }
-    if (byPlane.empty()) throw FileError(sourceName + ": holds no MPI planes (mpi_rgb_P*/mpi_alpha_P*)");
+    if (byPlane.empty())
+        throw FileError(sourceName + ": holds no MPI planes (mpi_rgb_P*/mpi_alpha_P*)");
     Mpi mpi;
     mpi.camera = camera;
     const int w = camera.width, h = camera.height;
     int expected = 0;
     for (auto& [d, pair] : byPlane) {
-        if (d != expected++) throw FileError(sourceName + ": MPI plane " + std::to_string(expected - 1) + " is missing");
+        if (d != expected++)
+            throw FileError(sourceName + ": MPI plane " + std::to_string(expected - 1) +
+                            " is missing");
         if (!pair.first || !pair.second)
-            throw FileError(sourceName + ": MPI plane " + std::to_string(d) + " lacks its rgb or alpha grid");
+            throw FileError(sourceName + ": MPI plane " + std::to_string(d) +
+                            " lacks its rgb or alpha grid");
         auto depth = pair.second->getMetadata<openvdb::DoubleMetadata>("mpi_depth");
-        if (!depth) throw FileError(sourceName + ": MPI plane " + std::to_string(d) + " lacks 'mpi_depth'");
+        if (!depth)
+            throw FileError(sourceName + ": MPI plane " + std::to_string(d) + " lacks 'mpi_depth'");
         mpi.planeDepths.push_back(depth->value());
         std::vector<float> plane(std::size_t(w) * h * 4, 0.f);
         auto rgbAcc = pair.first->getConstAccessor();

@@ -1,8 +1,9 @@
 // A multiplane image (MPI): D fronto-parallel RGB-alpha planes in the reference camera's
-// frustum, spaced linearly in disparity between near and far (docs/conventions.md#multiplane-image). Plane alpha is
-// an opacity, composited back to front. On disk every plane is a Vec3SGrid `mpi_rgb_P<d>` and
-// a FloatGrid `mpi_alpha_P<d>` whose affine transform puts pixel (u, v) of that plane at its
-// true place in the world frame, so any VDB tool shows the planes where they are.
+// frustum, spaced linearly in disparity between near and far
+// (docs/conventions.md#multiplane-image). Plane alpha is an opacity, composited back to front. On
+// disk every plane is a Vec3SGrid `mpi_rgb_P<d>` and a FloatGrid `mpi_alpha_P<d>` whose affine
+// transform puts pixel (u, v) of that plane at its true place in the world frame, so any VDB tool
+// shows the planes where they are.
 #pragma once
 
 #include "core/camera.h"

@@ -3,20 +3,20 @@
 #include "core/errors.h"
 #include "core/sibling_executable.h"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
-#include <fcntl.h>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <optional>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 
 extern char** environ;
 
@@ -43,19 +43,23 @@ std::optional<std::size_t> fileSize(const std::string& path) {
 // A corrupt size field then fails in about a second instead of filling the machine.
 std::size_t defaultCap(std::optional<std::size_t> bytes) {
     const std::size_t wanted = bytes ? *bytes * 256 : halfPhysicalMemory();
-    return std::clamp(wanted, std::size_t(2) << 30, std::max(halfPhysicalMemory(), std::size_t(2) << 30));
+    return std::clamp(wanted, std::size_t(2) << 30,
+                      std::max(halfPhysicalMemory(), std::size_t(2) << 30));
 }
 
 // The trial read's deadline: a minute, and a second more per 10 MB of file.
-double defaultTimeout(std::optional<std::size_t> bytes) { return 60.0 + (bytes ? double(*bytes) / 10e6 : 0.0); }
+double defaultTimeout(std::optional<std::size_t> bytes) {
+    return 60.0 + (bytes ? double(*bytes) / 10e6 : 0.0);
+}
 
 // One line per process: every later read would repeat it.
 void warnOnceThatReadsAreNotIsolated(const std::string& why) {
     static std::atomic<bool> warned{false};
     if (warned.exchange(true)) return;
-    std::cerr << "warning: " << why
-              << ": .vdb files are read without a trial read in a separate process, so a corrupt one may "
-                 "crash this program\n";
+    std::cerr
+        << "warning: " << why
+        << ": .vdb files are read without a trial read in a separate process, so a corrupt one may "
+           "crash this program\n";
 }
 
 // Starts the probe on `path` with its output discarded (the parent reports); -1 and errno
@@ -92,8 +96,10 @@ pid_t spawnProbe(const std::filesystem::path& probe, const std::string& path, st
 // Waits for the child until `timeoutSeconds`; false (the child killed and reaped) if it was
 // still running then.
 bool waitForChild(pid_t pid, double timeoutSeconds, int& status) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
-    auto pause = std::chrono::microseconds(200);  // first reads take milliseconds; back off to 50 ms
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
+    auto pause =
+        std::chrono::microseconds(200);  // first reads take milliseconds; back off to 50 ms
     for (;;) {
         const pid_t done = ::waitpid(pid, &status, WNOHANG);
         if (done == pid) return true;
@@ -110,10 +116,12 @@ bool waitForChild(pid_t pid, double timeoutSeconds, int& status) {
 
 }  // namespace
 
-ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes, double timeoutSeconds) {
+ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes,
+                             double timeoutSeconds) {
     const SiblingExecutable probe = findSiblingExecutable(kVdbProbeName);
     if (!probe.found) {
-        warnOnceThatReadsAreNotIsolated(std::string(kVdbProbeName) + " was not found beside " + probe.self);
+        warnOnceThatReadsAreNotIsolated(std::string(kVdbProbeName) + " was not found beside " +
+                                        probe.self);
         return ProbeResult::NotIsolated;
     }
     const std::optional<std::size_t> bytes = fileSize(path);
@@ -121,7 +129,8 @@ ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes
     const double timeout = timeoutSeconds > 0 ? timeoutSeconds : defaultTimeout(bytes);
     const pid_t pid = spawnProbe(probe.path, path, cap);
     if (pid < 0) {
-        warnOnceThatReadsAreNotIsolated("cannot start " + probe.path.string() + " (" + std::strerror(errno) + ")");
+        warnOnceThatReadsAreNotIsolated("cannot start " + probe.path.string() + " (" +
+                                        std::strerror(errno) + ")");
         return ProbeResult::NotIsolated;
     }
     int status = 0;
@@ -132,16 +141,19 @@ ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes
     } else if (WIFEXITED(status) && WEXITSTATUS(status) == kProbeRead) {
         return ProbeResult::Read;
     } else if (WIFEXITED(status) && WEXITSTATUS(status) == kProbeOutOfMemory) {
-        why = "reading it would need more than " + std::to_string(cap >> 30) + " GiB: its sizes are corrupt";
+        why = "reading it would need more than " + std::to_string(cap >> 30) +
+              " GiB: its sizes are corrupt";
     } else if (WIFEXITED(status) && WEXITSTATUS(status) == kProbeReadFailed) {
         why = "OpenVDB cannot read it";
     } else {
         // A probe of another version, or one that could not run: no verdict on the file.
-        warnOnceThatReadsAreNotIsolated(probe.path.string() + " ended with exit code " +
-                                        std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1));
+        warnOnceThatReadsAreNotIsolated(
+            probe.path.string() + " ended with exit code " +
+            std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1));
         return ProbeResult::NotIsolated;
     }
-    throw FileError("'" + path + "' is not a readable VDB file: " + why + " (corrupt or truncated?)");
+    throw FileError("'" + path + "' is not a readable VDB file: " + why +
+                    " (corrupt or truncated?)");
 }
 
 }  // namespace lh

@@ -44,6 +44,7 @@ enum class ProbeResult {
 // is missing or cannot be started, the file is read in-process with no isolation, after one
 // `warning:` line on stderr per process: a broken installation then still reads good files,
 // as before the probe existed, and says why a corrupt one could crash it.
-ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes = 0, double timeoutSeconds = 0);
+ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes = 0,
+                             double timeoutSeconds = 0);
 
 }  // namespace lh

@@ -44,13 +44,15 @@ SparsityBound sparsityBound(const LightingVolume& volume, double tau) {
     SparsityBound b;
     openvdb::BBoxd box;  // world bounding box of every level's domain (voxel faces)
     for (const auto& level : volume.levels) {
-        const openvdb::BBoxd index(level.domain.min().asVec3d() - Vec3d(0.5), level.domain.max().asVec3d() + Vec3d(0.5));
+        const openvdb::BBoxd index(level.domain.min().asVec3d() - Vec3d(0.5),
+                                   level.domain.max().asVec3d() + Vec3d(0.5));
         box.expand(level.transform().indexToWorld(index));
         auto d = level.density->getConstAccessor();
         for (auto it = level.color->cbeginValueOn(); it; ++it) {
             // Tiles of colour over density tiles: test the tile's first voxel's density.
             if (!(d.getValue(it.getCoord()) > 0.f)) continue;
-            b.maxColour = std::max({b.maxColour, double(it->x()), double(it->y()), double(it->z())});
+            b.maxColour =
+                std::max({b.maxColour, double(it->x()), double(it->y()), double(it->z())});
         }
     }
     b.rayLength = box.extents().length();
@@ -160,7 +162,8 @@ openvdb::CoordBBox unreproducedBox(const VolumeLevel& fine, const std::vector<Le
                         const openvdb::Coord ijk(x, y, z);
                         float sigma = 0.f;
                         if (!d.probeValue(ijk, sigma)) sigma = 0.f;
-                        const openvdb::Vec3s emission = sigma > 0.f ? c.getValue(ijk) * sigma : openvdb::Vec3s(0.f);
+                        const openvdb::Vec3s emission =
+                            sigma > 0.f ? c.getValue(ijk) * sigma : openvdb::Vec3s(0.f);
                         const Vec3d world = fine.transform().indexToWorld(ijk);
                         float sc = 0.f;
                         openvdb::Vec3s ec(0.f);
@@ -168,8 +171,10 @@ openvdb::CoordBBox unreproducedBox(const VolumeLevel& fine, const std::vector<Le
                         for (auto it = coarser.rbegin(); it != coarser.rend() && !inside; ++it)
                             inside = it->sample(world, sc, ec);
                         double de = 0;
-                        for (int i = 0; i < 3; ++i) de = std::max(de, double(std::abs(emission[i] - ec[i])));
-                        const bool same = inside && de + colour * std::abs(double(sigma) - sc) <= eps;
+                        for (int i = 0; i < 3; ++i)
+                            de = std::max(de, double(std::abs(emission[i] - ec[i])));
+                        const bool same =
+                            inside && de + colour * std::abs(double(sigma) - sc) <= eps;
                         if (!same) box.expand(ijk);
                     }
             return box;
@@ -225,7 +230,8 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
     s.maxColour = bound.maxColour;
     s.fieldBound = bound.fieldBound;
     if (options.dropThinVoxels)
-        for (auto& level : out.levels) s.thinVoxelsDropped += dropThinVoxels(level, bound.thinDensity());
+        for (auto& level : out.levels)
+            s.thinVoxelsDropped += dropThinVoxels(level, bound.thinDensity());
 
     if (options.dropReproducedFine && out.levels.size() > 1) {
         std::vector<VolumeLevel> kept{out.levels[0]};
@@ -233,7 +239,8 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
         fields.emplace_back(kept[0]);
         for (std::size_t k = 1; k < out.levels.size(); ++k) {
             VolumeLevel& level = out.levels[k];
-            openvdb::CoordBBox box = unreproducedBox(level, fields, bound.fieldBound, bound.maxColour);
+            openvdb::CoordBBox box =
+                unreproducedBox(level, fields, bound.fieldBound, bound.maxColour);
             const openvdb::Index64 before = level.density->activeVoxelCount();
             if (box.empty()) {
                 s.reproducedVoxelsDropped += before;
@@ -265,7 +272,8 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
         else
             out.layout.reset();
     }
-    for (auto& level : out.levels) pruneLevel(level, bound.fieldBound, bound.maxColour, options.pruneTiles);
+    for (auto& level : out.levels)
+        pruneLevel(level, bound.fieldBound, bound.maxColour, options.pruneTiles);
     out.normaliseLevels();
     s.activeAfter = activeDensityVoxels(out);
     s.memoryAfter = out.memoryBytes();
@@ -273,7 +281,8 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
     return out;
 }
 
-VolumeSaveReport saveSparseVolume(const std::string& path, const LightingVolume& volume, bool halfPrecision) {
+VolumeSaveReport saveSparseVolume(const std::string& path, const LightingVolume& volume,
+                                  bool halfPrecision) {
     return saveVolume(path, volume, VolumeSaveOptions{halfPrecision});
 }
 

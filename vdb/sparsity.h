@@ -46,24 +46,25 @@ struct SparsityOptions {
     // truth for volumes up to 19 dB (predicted ones reach ~15); measured, no tau up to 0.3
     // changed the oracle, example or predicted volumes more than another (docs/performance.md).
     double tau = 1e-4;
-    bool dropThinVoxels = true;     // deactivate voxels below the density bound
-    bool dropReproducedFine = true; // shrink or drop finer levels the coarser ones reproduce
-    bool pruneTiles = true;         // collapse near-constant nodes into tiles
-    int maxLevels = 0;              // > 0: keep only the coarsest maxLevels levels
+    bool dropThinVoxels = true;      // deactivate voxels below the density bound
+    bool dropReproducedFine = true;  // shrink or drop finer levels the coarser ones reproduce
+    bool pruneTiles = true;          // collapse near-constant nodes into tiles
+    int maxLevels = 0;               // > 0: keep only the coarsest maxLevels levels
 
     // Throws InputError unless tau is in [0, 1] and maxLevels >= 0.
     void validate() const;
 };
 
 struct SparsityStats {
-    openvdb::Index64 activeBefore = 0, activeAfter = 0;  // active density voxels (tiles count fully)
+    openvdb::Index64 activeBefore = 0,
+                     activeAfter = 0;  // active density voxels (tiles count fully)
     openvdb::Index64 memoryBefore = 0, memoryAfter = 0;  // bytes of both grids in memory
-    openvdb::Index64 thinVoxelsDropped = 0;   // below the density/emission bound
-    openvdb::Index64 reproducedVoxelsDropped = 0;  // outside a shrunken finer domain
-    int levelsDropped = 0;                    // reproduced entirely, or beyond maxLevels
-    double rayLength = 0;     // longest ray segment inside the volume, scene units
-    double maxColour = 0;     // brightest colour component where density is
-    double fieldBound = 0;    // eps = tau / (3 rayLength), radiance per scene unit
+    openvdb::Index64 thinVoxelsDropped = 0;              // below the density/emission bound
+    openvdb::Index64 reproducedVoxelsDropped = 0;        // outside a shrunken finer domain
+    int levelsDropped = 0;                               // reproduced entirely, or beyond maxLevels
+    double rayLength = 0;   // longest ray segment inside the volume, scene units
+    double maxColour = 0;   // brightest colour component where density is
+    double fieldBound = 0;  // eps = tau / (3 rayLength), radiance per scene unit
 };
 
 // The quantities the bound is derived from (see the top of this file), for a volume and tau.
@@ -82,9 +83,11 @@ SparsityBound sparsityBound(const LightingVolume& volume, double tau);
 // 4096^3 / 128^3 region, whatever they hold), and the 8^3 leaves, for density and colour.
 struct MemoryBreakdown {
     openvdb::Index64 densityUpper = 0, densityLeaves = 0, colourUpper = 0, colourLeaves = 0;
-    openvdb::Index64 leafCount = 0;        // density leaves
-    openvdb::Index64 activeVoxels = 0;     // active density voxels (tiles count fully)
-    openvdb::Index64 total() const { return densityUpper + densityLeaves + colourUpper + colourLeaves; }
+    openvdb::Index64 leafCount = 0;     // density leaves
+    openvdb::Index64 activeVoxels = 0;  // active density voxels (tiles count fully)
+    openvdb::Index64 total() const {
+        return densityUpper + densityLeaves + colourUpper + colourLeaves;
+    }
     // An estimate, not a representation this project has: what a packed store of only the
     // active voxels would take (per 8^3 block: a 12-byte origin, a 64-byte active mask and an
     // 8-byte index entry; per active voxel: sigma and RGB as 4 floats). Tiles count as all
@@ -108,7 +111,8 @@ int levelsForDepthRange(double near, double far, int maxLevels = 5);
 // Writes a sparsified volume Blosc-compressed, optionally as half floats (values above
 // kHalfSafeMax clamped, vdb/volume_io.h); the relative rounding error of every stored value is
 // then at most 2^-11.
-VolumeSaveReport saveSparseVolume(const std::string& path, const LightingVolume& volume, bool halfPrecision);
+VolumeSaveReport saveSparseVolume(const std::string& path, const LightingVolume& volume,
+                                  bool halfPrecision);
 
 // Active density voxels of every level (tiles count their voxels).
 openvdb::Index64 activeDensityVoxels(const LightingVolume& volume);

@@ -9,11 +9,11 @@
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
+#include <sys/resource.h>
 #include <cerrno>
 #include <cstdlib>
 #include <iostream>
 #include <new>
-#include <sys/resource.h>
 
 namespace {
 
@@ -43,9 +43,9 @@ int main(int argc, char** argv) {
     const rlim_t cap = argc == 3 ? parseCap(argv[2]) : 0;
     if (cap == 0) {
         std::cerr << "usage: " << lh::kVdbProbeName << " FILE MEMORY_CAP_BYTES\n"
-                  << "Reads every grid of FILE under the address-space cap; exit code " << lh::kProbeRead
-                  << " read, " << lh::kProbeReadFailed << " unreadable, " << lh::kProbeOutOfMemory
-                  << " over the cap, " << lh::kProbeUsage << " usage.\n";
+                  << "Reads every grid of FILE under the address-space cap; exit code "
+                  << lh::kProbeRead << " read, " << lh::kProbeReadFailed << " unreadable, "
+                  << lh::kProbeOutOfMemory << " over the cap, " << lh::kProbeUsage << " usage.\n";
         return lh::kProbeUsage;
     }
     if (!capAddressSpace(cap)) {

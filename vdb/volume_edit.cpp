@@ -59,17 +59,19 @@ std::size_t paint(LightingVolume& volume, const WorldBox& bounds, Inside inside,
 
 void checkRadiance(const openvdb::Vec3s& radiance, float sigma) {
     for (int c = 0; c < 3; ++c)
-        if (!(radiance[c] >= 0) || !std::isfinite(radiance[c])) throw InputError("radiance must be finite and >= 0");
+        if (!(radiance[c] >= 0) || !std::isfinite(radiance[c]))
+            throw InputError("radiance must be finite and >= 0");
     if (!(sigma > 0) || !std::isfinite(sigma)) throw InputError("density must be finite and > 0");
 }
 
 }  // namespace
 
-std::size_t addEmissiveBox(LightingVolume& volume, const WorldBox& box, const openvdb::Vec3s& radiance,
-                           float sigma) {
+std::size_t addEmissiveBox(LightingVolume& volume, const WorldBox& box,
+                           const openvdb::Vec3s& radiance, float sigma) {
     checkBox(box);
     checkRadiance(radiance, sigma);
-    return paint(volume, box, [&](const Vec3d& p) { return box.contains(p); }, sigma, radiance);
+    return paint(
+        volume, box, [&](const Vec3d& p) { return box.contains(p); }, sigma, radiance);
 }
 
 std::size_t addEmissiveSphere(LightingVolume& volume, const Vec3d& centre, double radius,
@@ -77,12 +79,15 @@ std::size_t addEmissiveSphere(LightingVolume& volume, const Vec3d& centre, doubl
     if (!(radius > 0) || !std::isfinite(radius)) throw InputError("sphere radius must be positive");
     checkRadiance(radiance, sigma);
     const WorldBox bounds{centre - Vec3d(radius), centre + Vec3d(radius)};
-    return paint(volume, bounds, [&](const Vec3d& p) { return (p - centre).length() <= radius; }, sigma, radiance);
+    return paint(
+        volume, bounds, [&](const Vec3d& p) { return (p - centre).length() <= radius; }, sigma,
+        radiance);
 }
 
 std::size_t eraseBox(LightingVolume& volume, const WorldBox& box) {
     checkBox(box);
-    const std::size_t erased = paint(volume, box, [&](const Vec3d& p) { return box.contains(p); }, 0.f, openvdb::Vec3s(0.f));
+    const std::size_t erased = paint(
+        volume, box, [&](const Vec3d& p) { return box.contains(p); }, 0.f, openvdb::Vec3s(0.f));
     for (VolumeLevel& level : volume.levels) {
         level.density->pruneGrid();
         level.color->pruneGrid();
@@ -113,23 +118,28 @@ void cropToBox(LightingVolume& volume, const WorldBox& box) {
 }
 
 void scaleExposure(LightingVolume& volume, float factor) {
-    if (!(factor >= 0) || !std::isfinite(factor)) throw InputError("exposure factor must be finite and >= 0");
+    if (!(factor >= 0) || !std::isfinite(factor))
+        throw InputError("exposure factor must be finite and >= 0");
     for (VolumeLevel& level : volume.levels)
-        openvdb::tools::foreach(level.color->beginValueAll(), [factor](const auto& it) { it.setValue(*it * factor); });
+        openvdb::tools::foreach (level.color->beginValueAll(),
+                                 [factor](const auto& it) { it.setValue(*it * factor); });
 }
 
 void scaleDensity(LightingVolume& volume, float factor) {
-    if (!(factor >= 0) || !std::isfinite(factor)) throw InputError("density factor must be finite and >= 0");
+    if (!(factor >= 0) || !std::isfinite(factor))
+        throw InputError("density factor must be finite and >= 0");
     for (VolumeLevel& level : volume.levels)
-        openvdb::tools::foreach(level.density->beginValueAll(), [factor](const auto& it) { it.setValue(*it * factor); });
+        openvdb::tools::foreach (level.density->beginValueAll(),
+                                 [factor](const auto& it) { it.setValue(*it * factor); });
 }
 
 void clampValues(LightingVolume& volume, float maxDensity, float maxRadiance) {
     if (!(maxDensity > 0) || !(maxRadiance > 0)) throw InputError("clamp bounds must be positive");
     for (VolumeLevel& level : volume.levels) {
-        openvdb::tools::foreach(level.density->beginValueAll(),
-                                [maxDensity](const auto& it) { it.setValue(std::min(*it, maxDensity)); });
-        openvdb::tools::foreach(level.color->beginValueAll(), [maxRadiance](const auto& it) {
+        openvdb::tools::foreach (level.density->beginValueAll(), [maxDensity](const auto& it) {
+            it.setValue(std::min(*it, maxDensity));
+        });
+        openvdb::tools::foreach (level.color->beginValueAll(), [maxRadiance](const auto& it) {
             openvdb::Vec3s v = *it;
             for (int c = 0; c < 3; ++c) v[c] = std::min(v[c], maxRadiance);
             it.setValue(v);

@@ -11,8 +11,8 @@ namespace lh {
 
 // Voxels whose centre lies in the box (or sphere) become `sigma` and `radiance`. Each returns
 // how many voxels it changed (over all levels): 0 when the shape misses every voxel centre.
-std::size_t addEmissiveBox(LightingVolume& volume, const WorldBox& box, const openvdb::Vec3s& radiance,
-                           float sigma);
+std::size_t addEmissiveBox(LightingVolume& volume, const WorldBox& box,
+                           const openvdb::Vec3s& radiance, float sigma);
 std::size_t addEmissiveSphere(LightingVolume& volume, const Vec3d& centre, double radius,
                               const openvdb::Vec3s& radiance, float sigma);
 // Voxels whose centre lies in the box become empty; returns how many.

@@ -30,9 +30,11 @@ struct VdbContents {
 VdbContents readVdb(const std::string& path) {
     initialiseOpenVdb();
     if (!std::filesystem::exists(path)) throw FileError("'" + path + "' does not exist");
-    if (std::filesystem::is_directory(path)) throw FileError("'" + path + "' is a directory, not a .vdb file");
+    if (std::filesystem::is_directory(path))
+        throw FileError("'" + path + "' is a directory, not a .vdb file");
     // A FIFO or a device would block the read (and its trial read) for ever.
-    if (!std::filesystem::is_regular_file(path)) throw FileError("'" + path + "' is not a regular file");
+    if (!std::filesystem::is_regular_file(path))
+        throw FileError("'" + path + "' is not a regular file");
     probeVdbReadable(path);
     try {
         openvdb::io::File file(path);
@@ -159,8 +161,8 @@ GridPtr gridToSave(const GridPtr& grid, bool halfPrecision, std::size_t& clamped
 
 std::string halfClampWarning(const VolumeSaveReport& report) {
     if (report.valuesClampedToHalf == 0) return "";
-    return std::to_string(report.valuesClampedToHalf) + " value(s) above " + std::to_string(int(kHalfSafeMax)) +
-           " were clamped to fit half precision";
+    return std::to_string(report.valuesClampedToHalf) + " value(s) above " +
+           std::to_string(int(kHalfSafeMax)) + " were clamped to fit half precision";
 }
 
 VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, const Mpi* mpi,
@@ -174,19 +176,25 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
     if (volume) {
         volume->validate();
         if (volume->layout)
-            fileMeta.insertMeta("lighthouse_layout", openvdb::StringMetadata(volume->layout->toJson()));
+            fileMeta.insertMeta("lighthouse_layout",
+                                openvdb::StringMetadata(volume->layout->toJson()));
         if (volume->refCamera)
             fileMeta.insertMeta("lighthouse_ref_camera",
                                 openvdb::StringMetadata(cameraToJson(*volume->refCamera)));
         for (std::size_t k = 0; k < volume->levels.size(); ++k) {
             const VolumeLevel& level = volume->levels[k];
-            const auto density = gridToSave(level.density, options.halfPrecision, report.valuesClampedToHalf);
-            const auto color = gridToSave(level.color, options.halfPrecision, report.valuesClampedToHalf);
-            for (openvdb::GridBase::Ptr g : {openvdb::GridBase::Ptr(density), openvdb::GridBase::Ptr(color)}) {
+            const auto density =
+                gridToSave(level.density, options.halfPrecision, report.valuesClampedToHalf);
+            const auto color =
+                gridToSave(level.color, options.halfPrecision, report.valuesClampedToHalf);
+            for (openvdb::GridBase::Ptr g :
+                 {openvdb::GridBase::Ptr(density), openvdb::GridBase::Ptr(color)}) {
                 g->setName(g == density ? densityGridName(int(k)) : colorGridName(int(k)));
                 g->insertMeta("level", openvdb::Int32Metadata(int(k)));
-                g->insertMeta("lighthouse_domain_min", openvdb::Vec3IMetadata(level.domain.min().asVec3i()));
-                g->insertMeta("lighthouse_domain_max", openvdb::Vec3IMetadata(level.domain.max().asVec3i()));
+                g->insertMeta("lighthouse_domain_min",
+                              openvdb::Vec3IMetadata(level.domain.min().asVec3i()));
+                g->insertMeta("lighthouse_domain_max",
+                              openvdb::Vec3IMetadata(level.domain.max().asVec3i()));
                 g->setSaveFloatAsHalf(options.halfPrecision);
                 grids.push_back(g);
             }
@@ -194,8 +202,10 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
     }
     if (mpi) {
         if (!volume)
-            fileMeta.insertMeta("lighthouse_ref_camera", openvdb::StringMetadata(cameraToJson(mpi->camera)));
-        fileMeta.insertMeta("lighthouse_mpi_camera", openvdb::StringMetadata(cameraToJson(mpi->camera)));
+            fileMeta.insertMeta("lighthouse_ref_camera",
+                                openvdb::StringMetadata(cameraToJson(mpi->camera)));
+        fileMeta.insertMeta("lighthouse_mpi_camera",
+                            openvdb::StringMetadata(cameraToJson(mpi->camera)));
         for (auto& g : mpiToGrids(*mpi)) {
             g->setSaveFloatAsHalf(options.halfPrecision);
             grids.push_back(g);
@@ -217,7 +227,8 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
 namespace {
 
 LightingVolume volumeFromContents(const VdbContents& contents, const std::string& path,
-                                  std::vector<std::string>* warnings, const VolumeLoadOptions& options) {
+                                  std::vector<std::string>* warnings,
+                                  const VolumeLoadOptions& options) {
     std::map<std::string, openvdb::GridBase::Ptr> byName;
     for (const auto& g : contents.grids) byName[g->getName()] = g;
 
@@ -240,8 +251,8 @@ LightingVolume volumeFromContents(const VdbContents& contents, const std::string
         if (!color)
             throw FileError("'" + path + "': grid '" + colorBase->getName() + "' is " +
                             gridKind(*colorBase) + ", expected a Vec3SGrid (linear RGB radiance)");
-        for (const openvdb::GridBase* g : {(const openvdb::GridBase*)density.get(),
-                                           (const openvdb::GridBase*)color.get()})
+        for (const openvdb::GridBase* g :
+             {(const openvdb::GridBase*)density.get(), (const openvdb::GridBase*)color.get()})
             if (!g->transform().isLinear())
                 throw FileError("'" + path + "': grid '" + g->getName() +
                                 "' has a non-affine (frustum) transform; resample it onto a "
@@ -259,21 +270,24 @@ LightingVolume volumeFromContents(const VdbContents& contents, const std::string
         if (level.domain.empty()) level.domain = density->evalActiveVoxelBoundingBox();
         if (level.domain.empty()) {
             emptyDensity.push_back(name);
-            if (warnings) warnings->push_back("'" + path + "': grid '" + name + "' is empty; ignored");
+            if (warnings)
+                warnings->push_back("'" + path + "': grid '" + name + "' is empty; ignored");
             continue;
         }
         volume.levels.push_back(level);
     }
     if (volume.levels.empty() && !emptyDensity.empty())
-        throw FileError("'" + path + "': density grid '" + emptyDensity.front() +
-                        "' is empty (no active voxels, and no stored domain to give the level its extent), "
-                        "so the file holds no volume to render");
+        throw FileError(
+            "'" + path + "': density grid '" + emptyDensity.front() +
+            "' is empty (no active voxels, and no stored domain to give the level its extent), "
+            "so the file holds no volume to render");
     if (volume.levels.empty()) {
         bool anyColor = false;
         for (const auto& [name, grid] : byName) anyColor |= name.rfind("color", 0) == 0;
-        throw FileError("'" + path + "': " +
-                        (anyColor ? std::string("has a color grid but no FloatGrid 'density'")
-                                  : std::string("holds no lighting volume (no 'density' + 'color' grids)")));
+        throw FileError(
+            "'" + path + "': " +
+            (anyColor ? std::string("has a color grid but no FloatGrid 'density'")
+                      : std::string("holds no lighting volume (no 'density' + 'color' grids)")));
     }
     try {
         volume.normaliseLevels();

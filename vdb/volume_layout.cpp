@@ -34,7 +34,8 @@ VolumeLayout VolumeLayout::fromFarDepth(double far, int levels, int resolution) 
     // required"); a far depth this small is a mistake in the cameras, not a scene.
     if (layout.voxelSize(levels - 1) < kMinVoxelSize) {
         std::ostringstream why;
-        why << "the cameras' far depth of " << far << " m gives voxels smaller than " << kMinVoxelSize
+        why << "the cameras' far depth of " << far << " m gives voxels smaller than "
+            << kMinVoxelSize
             << " m: near and far in cameras.json are depths in metres (e.g. 0.5 and 20)";
         throw InputError(why.str());
     }
@@ -64,7 +65,8 @@ void VolumeLayout::validate() const {
     if (levels < 1 || levels > 16)
         throw InputError("layout: level count must be in [1, 16], got " + std::to_string(levels));
     if (resolution < 2)
-        throw InputError("layout: resolution must be at least 2, got " + std::to_string(resolution));
+        throw InputError("layout: resolution must be at least 2, got " +
+                         std::to_string(resolution));
     if (resolution > kMaxResolution)
         throw ResourceError("layout: resolution " + std::to_string(resolution) +
                             " would exhaust memory (at most " + std::to_string(kMaxResolution) +
@@ -89,7 +91,8 @@ int wholeNumber(const nlohmann::json& j, const char* key, const std::string& sou
     const nlohmann::json& v = j.at(key);
     const double d = v.is_number() ? v.get<double>() : 0.5;
     if (!(std::floor(d) == d && d >= double(INT_MIN) && d <= double(INT_MAX)))
-        throw FileError(sourceName + ": layout metadata '" + key + "' is not a whole number, got " + v.dump());
+        throw FileError(sourceName + ": layout metadata '" + key + "' is not a whole number, got " +
+                        v.dump());
     return int(d);
 }
 

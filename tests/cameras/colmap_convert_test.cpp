@@ -36,7 +36,8 @@ ColmapPairOptions standardOptions(const ColmapFixture& f) {
 
 void expectMat(const Mat3d& a, const Mat3d& b, double tol) {
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) EXPECT_NEAR(a(i, j), b(i, j), tol) << "(" << i << "," << j << ")";
+        for (int j = 0; j < 3; ++j)
+            EXPECT_NEAR(a(i, j), b(i, j), tol) << "(" << i << "," << j << ")";
 }
 
 void expectVec(const Vec3d& a, const Vec3d& b, double tol) {
@@ -194,7 +195,8 @@ TEST(ColmapConvert, QuaternionIsHamiltonWithScalarFirst) {
 
 // ---- bad input: one clear error each ----------------------------------------------------
 
-template <class F> std::string errorOf(F&& f) {
+template <class F>
+std::string errorOf(F&& f) {
     try {
         f();
     } catch (const Error& e) {
@@ -210,7 +212,8 @@ TEST(ColmapConvertErrors, MissingImageNameListsTheModelsImages) {
     ColmapPairOptions o = standardOptions(f);
     o.src = "nothere.jpg";
     const std::string e = errorOf([&] { convertColmapPair(readColmapModel(dir), o); });
-    EXPECT_NE(e.find("--src image 'nothere.jpg' is not in the COLMAP model"), std::string::npos) << e;
+    EXPECT_NE(e.find("--src image 'nothere.jpg' is not in the COLMAP model"), std::string::npos)
+        << e;
     EXPECT_NE(e.find("left/ref.jpg"), std::string::npos) << e;
 }
 

@@ -32,8 +32,8 @@ struct FixtureImage {
     std::uint32_t id;
     std::uint32_t cameraId;
     std::string name;
-    Mat3d rotation;  // true cam_to_world rotation, metric frame
-    Vec3d centre;    // true centre, metres
+    Mat3d rotation;                    // true cam_to_world rotation, metric frame
+    Vec3d centre;                      // true centre, metres
     std::vector<std::int64_t> points;  // 3D point ids its keypoints observe
 };
 
@@ -112,8 +112,8 @@ inline ColmapFixture standardFixture() {
                  {2, "SIMPLE_PINHOLE", 0, 640, 480, {498.0, 321.0, 240.5}},
                  {7, "OPENCV", 4, 800, 600, {600, 600, 400, 300, 0.1, -0.02, 0.001, 0.002}}};
     FixtureImage ref{3, 1, "left/ref.jpg", Mat3d::identity(), Vec3d(0, 0, 0), {}};
-    FixtureImage src{5, 2, "right/src.jpg", axisAngle(Vec3d(0.2, 1, 0.1), 4.0),
-                     Vec3d(0.12, -0.01, -0.015), {}};
+    FixtureImage src{
+        5, 2, "right/src.jpg", axisAngle(Vec3d(0.2, 1, 0.1), 4.0), Vec3d(0.12, -0.01, -0.015), {}};
     FixtureImage other{9, 7, "other.jpg", axisAngle(Vec3d(1, 0, 0), 10.0), Vec3d(-1, 0, 0), {}};
     for (int k = 0; k <= 100; ++k) {
         const double z = 1.0 + 0.04 * k;
@@ -167,7 +167,8 @@ inline void writeText(const ColmapFixture& f, const std::string& dir) {
     }
 }
 
-template <class T> void put(std::ofstream& out, T value) {
+template <class T>
+void put(std::ofstream& out, T value) {
     out.write(reinterpret_cast<const char*>(&value), sizeof(T));  // the test host is little endian
 }
 

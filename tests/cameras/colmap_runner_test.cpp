@@ -1,8 +1,8 @@
 // Running COLMAP on two photos. COLMAP is optional (Debian's `colmap` package): without it the
 // pose test is skipped, and the missing program must be one clear error.
+#include "cameras/colmap_runner.h"
 #include "cameras/colmap_convert.h"
 #include "cameras/colmap_model.h"
-#include "cameras/colmap_runner.h"
 #include "core/errors.h"
 #include "synth/dataset.h"
 #include "tests/support/temp_path.h"
@@ -85,10 +85,11 @@ TEST(ColmapRunner, SyntheticPairGivesBackTheTruePose) {
     const Mat3d relative = src.rotation.transpose() * truth.src->rotation;
     const double rotationError = rotationDegrees(relative);
     const double directionError = angleDegrees(src.position, truth.src->position);
-    std::printf("rotation error %.3f deg, baseline direction error %.3f deg, fx %.2f (true %.2f), "
-                "near %.3f (true %.3f)\n",
-                rotationError, directionError, src.fx, truth.ref.fx, r.cameras.near.value_or(0),
-                truth.near.value_or(0));
+    std::printf(
+        "rotation error %.3f deg, baseline direction error %.3f deg, fx %.2f (true %.2f), "
+        "near %.3f (true %.3f)\n",
+        rotationError, directionError, src.fx, truth.ref.fx, r.cameras.near.value_or(0),
+        truth.near.value_or(0));
     EXPECT_LT(rotationError, 3.0);
     EXPECT_LT(directionError, 15.0);
     EXPECT_NEAR(src.position.length(), *p.baseline, 1e-9);

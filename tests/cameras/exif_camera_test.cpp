@@ -114,7 +114,8 @@ TEST(ExifCamera, PairPutsSrcBaselineToTheRightAndCentresThePrincipalPoint) {
     EXPECT_DOUBLE_EQ(*d.far, 8.0);
 }
 
-template <class F> std::string errorOf(F&& f) {
+template <class F>
+std::string errorOf(F&& f) {
     try {
         f();
     } catch (const Error& e) {

@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
         }
     }
     if (!set) {
-        std::fprintf(stderr, "set_voxel_value: '%s' has no float or Vec3 grid '%s' with an active value\n",
+        std::fprintf(stderr,
+                     "set_voxel_value: '%s' has no float or Vec3 grid '%s' with an active value\n",
                      path.c_str(), name.c_str());
         return 1;
     }

@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 namespace lh {
 namespace {
@@ -69,7 +69,9 @@ TEST(AtomicOutput, AnUnwritableFolderIsNamedWithTheReason) {
             FAIL() << "no error for " << path;
         } catch (const FileError& e) {
             const std::string what = e.what();
-            EXPECT_NE(what.find("cannot create a file in the folder '" + folder + "'"), std::string::npos) << what;
+            EXPECT_NE(what.find("cannot create a file in the folder '" + folder + "'"),
+                      std::string::npos)
+                << what;
             EXPECT_TRUE(what.find("Permission denied") != std::string::npos ||
                         what.find("Read-only file system") != std::string::npos)
                 << what;
@@ -90,7 +92,8 @@ TEST(AtomicOutput, AWriterThatWroteNothingIsReported) {
     requireWritableOutput(path);  // a writable folder: no error, and nothing left behind
     EXPECT_FALSE(fs::exists(path));
     for (const auto& entry : fs::directory_iterator(fs::path(path).parent_path()))
-        EXPECT_EQ(entry.path().filename().string().find(".empty.tmp"), std::string::npos) << entry.path();
+        EXPECT_EQ(entry.path().filename().string().find(".empty.tmp"), std::string::npos)
+            << entry.path();
 }
 
 TEST(AtomicOutput, NamesNearTheFileNameLimitStillGetATemporary) {

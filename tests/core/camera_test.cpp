@@ -96,14 +96,15 @@ void expectInputError(const std::string& json, const std::string& fragment) {
 TEST(Camera, ImpossibleCamerasAreRejected) {
     const std::string cam = R"("width": 320, "height": 240, "cx": 160, "cy": 120)";
     expectInputError("{\"ref\": {" + cam + R"(, "fx": -5, "fy": 5}})", "focal");
-    expectInputError("{\"ref\": {" + cam +
-                         R"(, "fx": 5, "fy": 5, "cam_to_world": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}})",
-                     "orthonormal");
-    expectInputError("{\"ref\": {" + cam +
-                         R"(, "fx": 5, "fy": 5, "cam_to_world": [[-1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}})",
-                     "determinant");
-    expectInputError("{\"ref\": {" + cam + R"(, "fx": 5, "fy": 5}, "near": 5, "far": 2})",
-                     "near");
+    expectInputError(
+        "{\"ref\": {" + cam +
+            R"(, "fx": 5, "fy": 5, "cam_to_world": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}})",
+        "orthonormal");
+    expectInputError(
+        "{\"ref\": {" + cam +
+            R"(, "fx": 5, "fy": 5, "cam_to_world": [[-1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}})",
+        "determinant");
+    expectInputError("{\"ref\": {" + cam + R"(, "fx": 5, "fy": 5}, "near": 5, "far": 2})", "near");
     expectInputError("{\"ref\": {" + cam + R"(, "fx": 5}})", "fy");
     expectInputError(R"({"src": {}})", "ref");
     expectInputError("{\"ref\": {" + cam + R"(, "fx": 5, "fy": 5, "cam_to_world": [[1,0,0]]}})",
@@ -118,10 +119,12 @@ TEST(Camera, ImpossibleCamerasAreRejected) {
 // and the fuzz target (fuzz/cameras_json.cpp) aborting on it: its corpus keeps the input
 // (fuzz/corpus/cameras_json/crash_envmap_file_number.json).
 TEST(Camera, AnEnvmapFileThatIsNotAStringIsAnInputError) {
-    const std::string ref = R"("ref": {"width": 64, "height": 48, "fx": 50, "fy": 50, "cx": 32, "cy": 24})";
+    const std::string ref =
+        R"("ref": {"width": 64, "height": 48, "fx": 50, "fy": 50, "cx": 32, "cy": 24})";
     for (const char* key : {"file", "position_file"})
         for (const char* value : {"3", "null", "[\"a.exr\"]", "{}"}) {
-            const std::string json = "{" + ref + R"(, "envmaps": [{"position": [0, 0, 1], ")" + key + "\": " + value + "}]}";
+            const std::string json = "{" + ref + R"(, "envmaps": [{"position": [0, 0, 1], ")" +
+                                     key + "\": " + value + "}]}";
             EXPECT_THROW(parseCamerasJson(json, "bad.json"), InputError) << json;
             expectInputError(json, std::string("'") + key + "' must be a string");
         }

@@ -31,15 +31,17 @@ TEST(FastExp, OneAtZeroAndPowersOfTwoAtMultiplesOfLn2) {
     EXPECT_EQ(expOfNegative(0.0), 1.0);
     EXPECT_EQ(expOfNegative(-0.0), 1.0);
     // Multiples of ln 2 land on k with r ~ 0: powers of two to the last bit or two.
-    EXPECT_NEAR(expOfNegative(10 * std::log(2.0)), std::ldexp(1.0, -10), 2e-16 * std::ldexp(1.0, -10));
+    EXPECT_NEAR(expOfNegative(10 * std::log(2.0)), std::ldexp(1.0, -10),
+                2e-16 * std::ldexp(1.0, -10));
 }
 
 TEST(FastExp, HandsTheEdgesToLibm) {
     EXPECT_EQ(expOfNegative(std::numeric_limits<double>::infinity()), 0.0);
-    EXPECT_EQ(expOfNegative(-std::numeric_limits<double>::infinity()), std::numeric_limits<double>::infinity());
+    EXPECT_EQ(expOfNegative(-std::numeric_limits<double>::infinity()),
+              std::numeric_limits<double>::infinity());
     EXPECT_TRUE(std::isnan(expOfNegative(std::numeric_limits<double>::quiet_NaN())));
     EXPECT_EQ(expOfNegative(800.0), std::exp(-800.0));  // subnormal
-    EXPECT_EQ(expOfNegative(1e6), 0.0);                   // underflow
+    EXPECT_EQ(expOfNegative(1e6), 0.0);                 // underflow
     // Either side of the switch to libm.
     EXPECT_LT(ulpsApart(expOfNegative(699.99), std::exp(-699.99)), 4.0);
     EXPECT_EQ(expOfNegative(700.0), std::exp(-700.0));

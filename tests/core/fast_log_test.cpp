@@ -15,7 +15,8 @@ TEST(FastLog, AgreesWithLibmOnOneToTwo) {
     double worstRelative = 0.0;
     for (int i = 0; i < 200000; ++i) {
         const double v = x(rng);
-        worstRelative = std::max(worstRelative, std::fabs(logOfOneToTwo(v) - std::log(v)) / std::log(v));
+        worstRelative =
+            std::max(worstRelative, std::fabs(logOfOneToTwo(v) - std::log(v)) / std::log(v));
     }
     // The series' truncation (core/fast_log.h) is below 2.4e-10 relative; a wrong coefficient
     // would show at 1e-3 or worse.

@@ -1,6 +1,6 @@
 // Outputs that are inputs in another spelling are refused; distinct paths pass.
-#include "core/errors.h"
 #include "core/path_guard.h"
+#include "core/errors.h"
 
 #include <gtest/gtest.h>
 
@@ -46,16 +46,22 @@ TEST_F(PathGuardTest, TheSameFileInAnySpellingIsRefused) {
 
 TEST_F(PathGuardTest, DirectoriesProtectWhatTheyHoldBothWays) {
     // A file inside an input directory (import reading an export).
-    expectRefused((dir / "export" / "level_0.vdb").string(), {{(dir / "export").string(), "EXPORT_DIR"}});
-    expectRefused((dir / "export" / "new.vdb").string(), {{(dir / "export").string(), "EXPORT_DIR"}});
+    expectRefused((dir / "export" / "level_0.vdb").string(),
+                  {{(dir / "export").string(), "EXPORT_DIR"}});
+    expectRefused((dir / "export" / "new.vdb").string(),
+                  {{(dir / "export").string(), "EXPORT_DIR"}});
     // An output directory that holds an input (export replacing its directory).
-    expectRefused((dir / "export").string(), {{(dir / "export" / "level_0.vdb").string(), "input"}});
+    expectRefused((dir / "export").string(),
+                  {{(dir / "export" / "level_0.vdb").string(), "input"}});
 }
 
 TEST_F(PathGuardTest, DistinctOrMissingPathsPass) {
-    EXPECT_NO_THROW(requireOutputIsNotAnInput((dir / "out.png").string(), "-o", {{photo, "--image"}}));
-    EXPECT_NO_THROW(requireOutputIsNotAnInput((dir / "exported2").string(), "-o", {{(dir / "export").string(), "EXPORT_DIR"}}));
-    EXPECT_NO_THROW(requireOutputIsNotAnInput(photo, "-o", {{(dir / "missing.png").string(), "--image"}, {"", "--path"}}));
+    EXPECT_NO_THROW(
+        requireOutputIsNotAnInput((dir / "out.png").string(), "-o", {{photo, "--image"}}));
+    EXPECT_NO_THROW(requireOutputIsNotAnInput((dir / "exported2").string(), "-o",
+                                              {{(dir / "export").string(), "EXPORT_DIR"}}));
+    EXPECT_NO_THROW(requireOutputIsNotAnInput(
+        photo, "-o", {{(dir / "missing.png").string(), "--image"}, {"", "--path"}}));
     EXPECT_FALSE(sameFile(photo, (dir / "missing.png").string()));
     EXPECT_TRUE(sameFile(photo, (dir / "." / "photo.png").string()));
 }

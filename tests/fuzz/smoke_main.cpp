@@ -25,7 +25,9 @@ int main(int argc, char** argv) {
         } else if (fs::is_regular_file(argv[i])) {
             inputs.push_back(argv[i]);
         } else {
-            std::fprintf(stderr, "lighthouse: error: '%s' is neither a corpus folder nor an input file\n", argv[i]);
+            std::fprintf(stderr,
+                         "lighthouse: error: '%s' is neither a corpus folder nor an input file\n",
+                         argv[i]);
             return 1;
         }
     }
@@ -37,7 +39,8 @@ int main(int argc, char** argv) {
     for (const fs::path& path : inputs) {
         std::fprintf(stderr, "replaying %s\n", path.c_str());
         std::ifstream in(path, std::ios::binary);
-        const std::vector<char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        const std::vector<char> bytes{std::istreambuf_iterator<char>(in),
+                                      std::istreambuf_iterator<char>()};
         LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
     }
     std::printf("replayed %zu input(s)\n", inputs.size());

@@ -13,8 +13,8 @@
 #include "vdb/example_volume.h"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <openvdb/io/File.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -26,7 +26,8 @@ namespace lh {
 namespace {
 
 fs::path freshDir(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("lh_dcc_edits_" + name + "_" + std::to_string(::getpid()));
+    const fs::path p =
+        fs::temp_directory_path() / ("lh_dcc_edits_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(p);
     return p;
 }
@@ -80,13 +81,16 @@ Probe firstVoxel(const fs::path& levelFile) {
     return {};
 }
 
-void setColour(Grids& g, const DccConvention& conv, const openvdb::Coord& ijk, const openvdb::Vec3s& rgb) {
+void setColour(Grids& g, const DccConvention& conv, const openvdb::Coord& ijk,
+               const openvdb::Vec3s& rgb) {
     as<openvdb::Vec3SGrid>(g, conv.colorGrid)->tree().setValueOn(ijk, rgb);
 }
 
-void setEmission(Grids& g, const DccConvention& conv, const openvdb::Coord& ijk, const openvdb::Vec3s& e) {
+void setEmission(Grids& g, const DccConvention& conv, const openvdb::Coord& ijk,
+                 const openvdb::Vec3s& e) {
     if (conv.splitEmission) {
-        for (int c = 0; c < 3; ++c) as<openvdb::FloatGrid>(g, kDccEmissionChannelGrids[c])->tree().setValueOn(ijk, e[c]);
+        for (int c = 0; c < 3; ++c)
+            as<openvdb::FloatGrid>(g, kDccEmissionChannelGrids[c])->tree().setValueOn(ijk, e[c]);
     } else {
         as<openvdb::Vec3SGrid>(g, kDccEmissionGrid)->tree().setValueOn(ijk, e);
     }
@@ -158,13 +162,15 @@ TEST(DccEdits, AnEditedColourGridWinsOverTheUntouchedEmission) {
         const Exported e = exportExample(dcc, "colour");
         const openvdb::Vec3s edited(0.25f, 0.5f, 2.f);
         ASSERT_NE(e.original, edited);
-        editFile(e.dir / dccLevelFileName(0), [&](Grids& g) { setColour(g, conv, e.voxel.ijk, edited); });
+        editFile(e.dir / dccLevelFileName(0),
+                 [&](Grids& g) { setColour(g, conv, e.voxel.ijk, edited); });
         DccImportReport report;
         const LightingVolume back = importFromDcc(e.dir.string(), dcc, &report);
         EXPECT_EQ(back.levels[0].color->tree().getValue(e.voxel.ijk), edited) << conv.name;
         EXPECT_EQ(back.levels[0].density->tree().getValue(e.voxel.ijk), e.voxel.sigma) << conv.name;
         EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
-        EXPECT_TRUE(contains(report.notes, "(level 0): '" + conv.colorGrid + "' was edited")) << conv.name;
+        EXPECT_TRUE(contains(report.notes, "(level 0): '" + conv.colorGrid + "' was edited"))
+            << conv.name;
         fs::remove_all(e.dir);
     }
 }
@@ -203,8 +209,9 @@ TEST(DccEdits, BothEditedAndDisagreeingGivesOneWarningAndEmissionWins) {
         ASSERT_EQ(report.warnings.size(), 1u) << conv.name;
         const std::string& w = report.warnings[0];
         const std::string emissionName = conv.splitEmission ? "emission_r/g/b" : "emission";
-        for (const std::string& part : {std::string("level_0.vdb' (level 0)"), "'" + conv.colorGrid + "'",
-                                        "'" + emissionName + "'", std::string("disagree in 1 voxel(s)")})
+        for (const std::string& part :
+             {std::string("level_0.vdb' (level 0)"), "'" + conv.colorGrid + "'",
+              "'" + emissionName + "'", std::string("disagree in 1 voxel(s)")})
             EXPECT_NE(w.find(part), std::string::npos) << "'" << part << "' not in: " << w;
         fs::remove_all(e.dir);
     }
@@ -238,7 +245,8 @@ TEST(DccEdits, ReSavingAtHalfPrecisionIsNotAConflict) {
                 for (auto& [name, grid] : g) grid->setSaveFloatAsHalf(true);
             });
         // The values did change: the colour grid no longer has its checksum.
-        const auto checksums = readManifestChecksums(readJson(e.dir / kDccManifestName), "manifest");
+        const auto checksums =
+            readManifestChecksums(readJson(e.dir / kDccManifestName), "manifest");
         ASSERT_TRUE(checksums.has_value());
         openvdb::io::File in((e.dir / dccLevelFileName(0)).string());
         in.open();
@@ -262,14 +270,17 @@ TEST(DccEdits, WithoutChecksumsEmissionWinsAndImportSaysSoOnce) {
     m.erase("checksum");
     for (auto& level : m["levels"]) level.erase("checksums");
     writeJson(e.dir / kDccManifestName, m);
-    editFile(e.dir / dccLevelFileName(0), [&](Grids& g) { setColour(g, conv, e.voxel.ijk, openvdb::Vec3s(9.f)); });
+    editFile(e.dir / dccLevelFileName(0),
+             [&](Grids& g) { setColour(g, conv, e.voxel.ijk, openvdb::Vec3s(9.f)); });
     DccImportReport report;
     const LightingVolume back = importFromDcc(e.dir.string(), Dcc::Houdini, &report);
     const openvdb::Vec3s got = back.levels[0].color->tree().getValue(e.voxel.ijk);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], e.original[c], 1e-5 * (1 + e.original[c]));
     ASSERT_EQ(report.warnings.size(), 1u);
-    EXPECT_NE(report.warnings[0].find("has no grid checksums"), std::string::npos) << report.warnings[0];
-    EXPECT_NE(report.warnings[0].find("an edit to 'Cd' alone is ignored"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("has no grid checksums"), std::string::npos)
+        << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("an edit to 'Cd' alone is ignored"), std::string::npos)
+        << report.warnings[0];
     fs::remove_all(e.dir);
 }
 
@@ -289,7 +300,8 @@ TEST(DccEdits, AMalformedOrMismatchedManifestIsOneError) {
     nlohmann::json m = good;
     m["levels"][1]["checksums"]["density"] = "not hex";
     writeJson(manifest, m);
-    expectImportError(e.dir, Dcc::Houdini, "level 1's \"checksums\" is not an object of grid name -> 16 hex digits");
+    expectImportError(e.dir, Dcc::Houdini,
+                      "level 1's \"checksums\" is not an object of grid name -> 16 hex digits");
     m = good;
     m["levels"][2].erase("checksums");
     writeJson(manifest, m);
@@ -297,7 +309,8 @@ TEST(DccEdits, AMalformedOrMismatchedManifestIsOneError) {
     m = good;
     m["checksum"] = "md5";
     writeJson(manifest, m);
-    expectImportError(e.dir, Dcc::Houdini, "\"checksum\" is \"md5\", expected \"lighthouse-active-voxels-v1\"");
+    expectImportError(e.dir, Dcc::Houdini,
+                      "\"checksum\" is \"md5\", expected \"lighthouse-active-voxels-v1\"");
     m = good;
     m["mpi"] = {{"file", "../elsewhere.vdb"}};
     writeJson(manifest, m);
@@ -305,7 +318,8 @@ TEST(DccEdits, AMalformedOrMismatchedManifestIsOneError) {
     // A level file from another export of the same volume: its export id gives it away.
     writeJson(manifest, good);
     const Exported other = exportExample(Dcc::Houdini, "other");
-    fs::copy_file(other.dir / dccLevelFileName(1), e.dir / dccLevelFileName(1), fs::copy_options::overwrite_existing);
+    fs::copy_file(other.dir / dccLevelFileName(1), e.dir / dccLevelFileName(1),
+                  fs::copy_options::overwrite_existing);
     expectImportError(e.dir, Dcc::Houdini, "level_1.vdb' belongs to another export than");
     fs::remove_all(e.dir);
     fs::remove_all(other.dir);
@@ -326,9 +340,12 @@ TEST(DccEdits, TheMpiGoesOutAndComesBack) {
         ASSERT_TRUE(alpha && rgb);
         EXPECT_EQ(alpha->tree().getValue(openvdb::Coord(17, 9, 0)), 0.75f);
         const DccConvention conv = dccConvention(dcc);
-        const Vec3d world = mpiPlaneTransform(mpi.camera, mpi.planeDepths[2])->indexToWorld(openvdb::Coord(17, 9, 0));
-        const Vec3d inDcc = alpha->transform().indexToWorld(Vec3d(17, 9, 0) + Vec3d(-conv.indexShift));
-        EXPECT_TRUE(inDcc.eq(conv.worldToDcc * world, 1e-9)) << inDcc << " vs " << conv.worldToDcc * world;
+        const Vec3d world = mpiPlaneTransform(mpi.camera, mpi.planeDepths[2])
+                                ->indexToWorld(openvdb::Coord(17, 9, 0));
+        const Vec3d inDcc =
+            alpha->transform().indexToWorld(Vec3d(17, 9, 0) + Vec3d(-conv.indexShift));
+        EXPECT_TRUE(inDcc.eq(conv.worldToDcc * world, 1e-9))
+            << inDcc << " vs " << conv.worldToDcc * world;
         // Back: the same MPI.
         DccImportReport report;
         importFromDcc(e.dir.string(), dcc, &report);

@@ -23,7 +23,8 @@ namespace lh {
 namespace {
 
 fs::path freshDir(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("lh_dcc_test_" + name + "_" + std::to_string(::getpid()));
+    const fs::path p =
+        fs::temp_directory_path() / ("lh_dcc_test_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(p);
     return p;
 }
@@ -50,11 +51,12 @@ TEST(DccConvention, AxesAreRotationsThatPutUpAndForwardWhereEachProgramExpects) 
         EXPECT_TRUE((r * r.transpose()).eq(Mat3d::identity(), 1e-12));
         EXPECT_TRUE((r * Vec3d(1, 0, 0)).eq(Vec3d(1, 0, 0)));  // right stays +X in both
     }
-    const Mat3d b = dccConvention(Dcc::Blender).worldToDcc, h = dccConvention(Dcc::Houdini).worldToDcc;
-    EXPECT_TRUE((b * Vec3d(0, -1, 0)).eq(Vec3d(0, 0, 1)));   // up (-y) is Blender +Z
-    EXPECT_TRUE((b * Vec3d(0, 0, 1)).eq(Vec3d(0, 1, 0)));    // forward (+z) is Blender +Y
-    EXPECT_TRUE((h * Vec3d(0, -1, 0)).eq(Vec3d(0, 1, 0)));   // up is Houdini +Y
-    EXPECT_TRUE((h * Vec3d(0, 0, 1)).eq(Vec3d(0, 0, -1)));   // forward is Houdini -Z (camera view)
+    const Mat3d b = dccConvention(Dcc::Blender).worldToDcc,
+                h = dccConvention(Dcc::Houdini).worldToDcc;
+    EXPECT_TRUE((b * Vec3d(0, -1, 0)).eq(Vec3d(0, 0, 1)));  // up (-y) is Blender +Z
+    EXPECT_TRUE((b * Vec3d(0, 0, 1)).eq(Vec3d(0, 1, 0)));   // forward (+z) is Blender +Y
+    EXPECT_TRUE((h * Vec3d(0, -1, 0)).eq(Vec3d(0, 1, 0)));  // up is Houdini +Y
+    EXPECT_TRUE((h * Vec3d(0, 0, 1)).eq(Vec3d(0, 0, -1)));  // forward is Houdini -Z (camera view)
     EXPECT_EQ(parseDcc("Blender", "--for"), Dcc::Blender);
     EXPECT_THROW(parseDcc("maya", "--for"), InputError);
 }
@@ -99,7 +101,8 @@ TEST(DccExport, WritesOneFilePerLevelWithTheProgramsNamesTypesAndAxes) {
             EXPECT_EQ(color->getVectorType(), openvdb::VEC_INVARIANT);
             if (conv.splitEmission) {
                 for (const char* name : kDccEmissionChannelGrids)
-                    EXPECT_TRUE(openvdb::gridPtrCast<openvdb::FloatGrid>(byName(grids, name))) << name;
+                    EXPECT_TRUE(openvdb::gridPtrCast<openvdb::FloatGrid>(byName(grids, name)))
+                        << name;
             } else {
                 auto emission = openvdb::gridPtrCast<openvdb::Vec3SGrid>(byName(grids, "emission"));
                 ASSERT_TRUE(emission);
@@ -108,11 +111,13 @@ TEST(DccExport, WritesOneFilePerLevelWithTheProgramsNamesTypesAndAxes) {
             // Every voxel sits where the rotation says, in the program's world (Blender: with
             // its half-voxel cell convention undone by the index shift).
             const auto& src = volume.levels[k];
-            for (const openvdb::Coord ijk : {openvdb::Coord(0), openvdb::Coord(3, 7, 11), openvdb::Coord(31)}) {
+            for (const openvdb::Coord ijk :
+                 {openvdb::Coord(0), openvdb::Coord(3, 7, 11), openvdb::Coord(31)}) {
                 const Vec3d expect = conv.worldToDcc * src.transform().indexToWorld(ijk);
-                const Vec3d got = density->transform().indexToWorld(ijk.asVec3d() + Vec3d(-conv.indexShift));
-                EXPECT_TRUE(got.eq(expect, 1e-9)) << conv.name << " level " << k << " " << ijk << ": " << got
-                                                  << " vs " << expect;
+                const Vec3d got =
+                    density->transform().indexToWorld(ijk.asVec3d() + Vec3d(-conv.indexShift));
+                EXPECT_TRUE(got.eq(expect, 1e-9))
+                    << conv.name << " level " << k << " " << ijk << ": " << got << " vs " << expect;
             }
             EXPECT_EQ(density->activeVoxelCount(), report.activeVoxels[k]);
         }
@@ -157,7 +162,8 @@ TEST(DccExport, NeverOverwritesSomethingElseNorLeavesTemporaries) {
     EXPECT_FALSE(fs::exists(dir / dccLevelFileName(2)));
     EXPECT_THROW(exportForDcc(volume, (dir / "no" / "such").string(), {}), FileError);
     for (const auto& e : fs::directory_iterator(dir.parent_path()))
-        EXPECT_EQ(e.path().filename().string().find("." + dir.filename().string() + ".tmp"), std::string::npos)
+        EXPECT_EQ(e.path().filename().string().find("." + dir.filename().string() + ".tmp"),
+                  std::string::npos)
             << e.path();
     fs::remove_all(dir);
 }
@@ -179,7 +185,8 @@ TEST(DccImport, RoundTripRendersLikeTheOriginal) {
         ASSERT_TRUE(back.layout.has_value());  // still the nested layout
         EXPECT_EQ(*back.layout, *volume.layout);
         for (int k = 0; k < 3; ++k) {
-            EXPECT_TRUE(back.levels[k].transform() == volume.levels[k].transform()) << "level " << k;
+            EXPECT_TRUE(back.levels[k].transform() == volume.levels[k].transform())
+                << "level " << k;
             EXPECT_EQ(back.levels[k].domain, volume.levels[k].domain);
         }
         for (const Vec3d at : {Vec3d(0, 0, 2), Vec3d(0.2, 0.1, 0.45)}) {
@@ -187,9 +194,12 @@ TEST(DccImport, RoundTripRendersLikeTheOriginal) {
             const ImageRGB b = renderEnvmap(RenderVolume(back), at, {64, 32, MarchOptions{}});
             double worst = 0;
             for (std::size_t i = 0; i < a.pixels.size(); ++i)
-                worst = std::max(worst, double(std::abs(a.pixels[i] - b.pixels[i])) / std::max(1e-3f, a.pixels[i]));
-            EXPECT_LT(worst, 1e-5) << dccConvention(dcc).name << " at " << at;  // exact up to float rounding
-            const ImageRGB original = renderEnvmap(RenderVolume(volume), at, {64, 32, MarchOptions{}});
+                worst = std::max(worst, double(std::abs(a.pixels[i] - b.pixels[i])) /
+                                            std::max(1e-3f, a.pixels[i]));
+            EXPECT_LT(worst, 1e-5)
+                << dccConvention(dcc).name << " at " << at;  // exact up to float rounding
+            const ImageRGB original =
+                renderEnvmap(RenderVolume(volume), at, {64, 32, MarchOptions{}});
             EXPECT_GT(psnr(b, original), 45.0);
         }
         fs::remove_all(dir);
@@ -217,7 +227,8 @@ TEST(DccImport, RejectsWhatIsNotAnExportWithOneClearError) {
         importFromDcc(dir.string(), Dcc::Houdini);
         ADD_FAILURE() << "a Vec3SGrid density must be rejected";
     } catch (const FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("expected a FloatGrid"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("expected a FloatGrid"), std::string::npos)
+            << e.what();
     }
     fs::remove(dir / dccLevelFileName(1));
     EXPECT_THROW(importFromDcc(dir.string(), Dcc::Houdini), FileError);  // missing level file

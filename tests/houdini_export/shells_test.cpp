@@ -40,8 +40,10 @@ TEST(Shells, PartitionSpaceExactlyAsFinestWins) {
             sigma += m.sigma;
             emission += double(m.sigma) * (m.color[0] + m.color[1] + m.color[2]);
         }
-        const MediumSample expect = owner >= 0 ? nearestVoxel(volume.levels[owner], p) : MediumSample{};
-        const double expectEmission = double(expect.sigma) * (expect.color[0] + expect.color[1] + expect.color[2]);
+        const MediumSample expect =
+            owner >= 0 ? nearestVoxel(volume.levels[owner], p) : MediumSample{};
+        const double expectEmission =
+            double(expect.sigma) * (expect.color[0] + expect.color[1] + expect.color[2]);
         ASSERT_NEAR(sigma, expect.sigma, 1e-5 * std::max(1.0, double(expect.sigma))) << "at " << p;
         ASSERT_NEAR(emission, expectEmission, 1e-5 * std::max(1.0, expectEmission)) << "at " << p;
         ++checked;
@@ -60,7 +62,8 @@ TEST(Shells, KeepEveryUncoveredVoxelAndNothingElse) {
         for (auto it = volume.levels[k].density->cbeginValueOn(); it; ++it) {
             const Vec3d centre = volume.levels[k].transform().indexToWorld(it.getCoord());
             const bool covered = finestLevelAt(volume, centre) != int(k);
-            EXPECT_EQ(shellDensity.isValueOn(it.getCoord()), !covered) << "level " << k << " " << it.getCoord();
+            EXPECT_EQ(shellDensity.isValueOn(it.getCoord()), !covered)
+                << "level " << k << " " << it.getCoord();
             if (!covered) {
                 EXPECT_EQ(shellDensity.getValue(it.getCoord()), *it);
                 ++kept;
@@ -70,7 +73,8 @@ TEST(Shells, KeepEveryUncoveredVoxelAndNothingElse) {
         EXPECT_EQ(shells[k].domain, volume.levels[k].domain);
     }
     // The finest level is its own shell.
-    EXPECT_EQ(shells.back().density->activeVoxelCount(), volume.levels.back().density->activeVoxelCount());
+    EXPECT_EQ(shells.back().density->activeVoxelCount(),
+              volume.levels.back().density->activeVoxelCount());
 }
 
 // What a DCC renderer does with overlapping volumes: sum the trilinearly interpolated sigma and
@@ -84,7 +88,8 @@ ImageRGB renderSumOfShells(const LightingVolume& volume, const std::vector<Volum
             g->setTransform(s.transform().copy());
             auto acc = g->getAccessor();
             auto col = s.color->getConstAccessor();
-            for (auto it = s.density->cbeginValueOn(); it; ++it) acc.setValue(it.getCoord(), *it * col.getValue(it.getCoord())[c]);
+            for (auto it = s.density->cbeginValueOn(); it; ++it)
+                acc.setValue(it.getCoord(), *it * col.getValue(it.getCoord())[c]);
             emission[c].push_back(g);
         }
     ImageRGB image(width, height);
@@ -93,7 +98,8 @@ ImageRGB renderSumOfShells(const LightingVolume& volume, const std::vector<Volum
             const Vec3d d = envmapPixelDirection(r, col, width, height);
             double t = 0, T = 1, L[3] = {0, 0, 0};
             for (int guard = 0; guard < 200000 && T > 1e-6; ++guard) {
-                const double voxel = std::cbrt(volume.levels[std::max(0, finestLevelAt(volume, at + d * t))].voxelVolume());
+                const double voxel = std::cbrt(
+                    volume.levels[std::max(0, finestLevelAt(volume, at + d * t))].voxelVolume());
                 const double dt = 0.1 * voxel;
                 const Vec3d mid = at + d * (t + dt / 2);
                 if (finestLevelAt(volume, mid) < 0 && t > 0) break;  // left the volume
@@ -101,7 +107,8 @@ ImageRGB renderSumOfShells(const LightingVolume& volume, const std::vector<Volum
                 for (std::size_t k = 0; k < shells.size(); ++k) {
                     const Vec3d q = shells[k].transform().worldToIndex(mid);
                     sigma += openvdb::tools::BoxSampler::sample(shells[k].density->tree(), q);
-                    for (int c = 0; c < 3; ++c) e[c] += openvdb::tools::BoxSampler::sample(emission[c][k]->tree(), q);
+                    for (int c = 0; c < 3; ++c)
+                        e[c] += openvdb::tools::BoxSampler::sample(emission[c][k]->tree(), q);
                 }
                 const double a = sigma > 0 ? -std::expm1(-sigma * dt) / sigma : dt;
                 for (int c = 0; c < 3; ++c) L[c] += T * e[c] * a;
@@ -141,7 +148,8 @@ TEST(Shells, RefillingCoveredVoxelsKeepsTheRenderAndMatchesFinerLevels) {
     for (auto it = coarse.density->cbeginValueOn(); it; ++it) {
         const Vec3d c = coarse.transform().indexToWorld(it.getCoord());
         if (!fine.containsWorld(c)) continue;
-        const openvdb::Coord f0 = openvdb::Coord::round(fine.transform().worldToIndex(c) - Vec3d(0.5));
+        const openvdb::Coord f0 =
+            openvdb::Coord::round(fine.transform().worldToIndex(c) - Vec3d(0.5));
         double sigma = 0;
         for (int s = 0; s < 8; ++s)
             sigma += fine.density->tree().getValue(f0.offsetBy(s & 1, (s >> 1) & 1, (s >> 2) & 1));

@@ -20,8 +20,9 @@ ImageRGB filled(int w, int h, float r, float g, float b) {
 
 TEST(ContactSheet, TilesKeepTheirAspectInsideADarkBorder) {
     // Row 1: a red 8x4 (scaled to 4x2) and a green 2x2; row 2: a blue 4x4 (scaled to 2x2).
-    const ImageRGB sheet = contactSheet({{filled(8, 4, 1, 0, 0), filled(2, 2, 0, 1, 0)}, {filled(4, 4, 0, 0, 1)}},
-                                        /*tileHeight=*/2, /*gap=*/1);
+    const ImageRGB sheet =
+        contactSheet({{filled(8, 4, 1, 0, 0), filled(2, 2, 0, 1, 0)}, {filled(4, 4, 0, 0, 1)}},
+                     /*tileHeight=*/2, /*gap=*/1);
     // Width: gap + (4 + gap) + (2 + gap) = 9; height: gap + 2 rows x (2 + gap) = 7.
     ASSERT_EQ(sheet.width, 9);
     ASSERT_EQ(sheet.height, 7);
@@ -29,7 +30,8 @@ TEST(ContactSheet, TilesKeepTheirAspectInsideADarkBorder) {
         const float* p = sheet.at(x, y);
         return std::vector<float>{p[0], p[1], p[2]};
     };
-    const std::vector<float> border{0.02f, 0.02f, 0.02f}, red{1, 0, 0}, green{0, 1, 0}, blue{0, 0, 1};
+    const std::vector<float> border{0.02f, 0.02f, 0.02f}, red{1, 0, 0}, green{0, 1, 0},
+        blue{0, 0, 1};
     EXPECT_EQ(colour(0, 0), border);
     EXPECT_EQ(colour(1, 1), red);
     EXPECT_EQ(colour(4, 2), red);

@@ -8,6 +8,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,7 +19,6 @@
 #include <random>
 #include <string>
 #include <vector>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -68,8 +68,9 @@ std::vector<char> randomBytes(std::size_t count) {
 // A small image whose values cover ordinary, HDR, tiny, negative and zero radiance.
 lh::ImageRGB sampleImage() {
     lh::ImageRGB image(7, 5);
-    const float special[] = {1e6f, 1e-8f, 0.0f, -3.5f, 1e-40f /* denormal */,
-                             std::numeric_limits<float>::max(), 0.1f, 1.0f / 3.0f};
+    const float special[] = {
+        1e6f, 1e-8f,      0.0f, -3.5f, 1e-40f /* denormal */, std::numeric_limits<float>::max(),
+        0.1f, 1.0f / 3.0f};
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         image.pixels[i] = i < std::size(special) ? special[i] : 0.013f * float(i);
     return image;
@@ -115,7 +116,7 @@ TEST(ImageIo, ExrWithDataWindowHalfYOnlyReadsAsGrey) {
     const Imath::Box2i window(Imath::V2i(10, 20), Imath::V2i(12, 21));
     Imf::Header header(Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(99, 99)), window);
     header.channels().insert("Y", Imf::Channel(Imf::HALF));
-    const std::vector<half> y = {half(0.5f), half(2.0f), half(0.25f),
+    const std::vector<half> y = {half(0.5f),    half(2.0f), half(0.25f),
                                  half(1024.0f), half(0.0f), half(-1.0f)};
     Imf::FrameBuffer frame;
     frame.insert("Y", Imf::Slice::Make(Imf::HALF, y.data(), window));
@@ -138,9 +139,9 @@ TEST(ImageIo, PngRoundTripIsWithinHalfAStep) {
     lh::ImageRGB image(16, 4);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         image.pixels[i] = float(i) / float(image.pixels.size() - 1);  // ramp over [0,1]
-    image.pixels[0] = -1.0f;                                       // clamps to 0
-    image.pixels[1] = 2.0f;                                        // clamps to 1
-    image.pixels[2] = std::numeric_limits<float>::quiet_NaN();     // maps to 0
+    image.pixels[0] = -1.0f;                                          // clamps to 0
+    image.pixels[1] = 2.0f;                                           // clamps to 1
+    image.pixels[2] = std::numeric_limits<float>::quiet_NaN();        // maps to 0
     lh::writeImage(image, dir.file("a.png"));
     const lh::ImageRGB back = lh::readImage(dir.file("a.png"));
     ASSERT_EQ(back.width, image.width);
@@ -202,7 +203,8 @@ TEST(ImageIo, TruncatedPngAndJpegAreNamedAsSuch) {
     fs::copy_file(dir.file("whole.png"), dir.file("cut.png"));
     fs::resize_file(dir.file("cut.png"), fs::file_size(dir.file("whole.png")) / 2);
     // A JPEG that stops right after its start-of-image and a first marker.
-    writeBytes(dir.file("cut.jpg"), {char(0xFF), char(0xD8), char(0xFF), char(0xE0), 0, 16, 'J', 'F'});
+    writeBytes(dir.file("cut.jpg"),
+               {char(0xFF), char(0xD8), char(0xFF), char(0xE0), 0, 16, 'J', 'F'});
     writeBytes(dir.file("text.png"), {'h', 'e', 'l', 'l', 'o'});
     const auto messageOf = [](const std::string& path) {
         try {
@@ -212,9 +214,11 @@ TEST(ImageIo, TruncatedPngAndJpegAreNamedAsSuch) {
         }
         return std::string("no exception");
     };
-    EXPECT_NE(messageOf(dir.file("cut.png")).find("cut.png': truncated or corrupt PNG"), std::string::npos)
+    EXPECT_NE(messageOf(dir.file("cut.png")).find("cut.png': truncated or corrupt PNG"),
+              std::string::npos)
         << messageOf(dir.file("cut.png"));
-    EXPECT_NE(messageOf(dir.file("cut.jpg")).find("cut.jpg': truncated or corrupt JPEG"), std::string::npos)
+    EXPECT_NE(messageOf(dir.file("cut.jpg")).find("cut.jpg': truncated or corrupt JPEG"),
+              std::string::npos)
         << messageOf(dir.file("cut.jpg"));
     EXPECT_NE(messageOf(dir.file("text.png")).find("not a PNG or JPEG file"), std::string::npos)
         << messageOf(dir.file("text.png"));
@@ -225,7 +229,9 @@ TEST(ImageIo, TruncatedPngAndJpegAreNamedAsSuch) {
 // allocate 0.8 GB, and the float image then 3.1 GB. Only PNG and JPEG content reaches stb now.
 TEST(ImageIo, OtherFormatsUnderAPngOrJpegNameAreRefusedUnread) {
     ScratchDir dir("other_formats");
-    const std::string pgmHeader = "P55100\x0b" "510353";  // a binary PGM header: 260 million pixels
+    const std::string pgmHeader =
+        "P55100\x0b"
+        "510353";  // a binary PGM header: 260 million pixels
     writeBytes(dir.file("huge.png"), std::vector<char>(pgmHeader.begin(), pgmHeader.end()));
     // A complete 1 x 1 grey PGM, which stb would decode: refused all the same.
     const std::string pgm = std::string("P5 1 1 255\n") + char(200);
@@ -235,7 +241,8 @@ TEST(ImageIo, OtherFormatsUnderAPngOrJpegNameAreRefusedUnread) {
             lh::readImage(dir.file(name));
             FAIL() << name << " was read";
         } catch (const lh::FileError& e) {
-            EXPECT_NE(std::string(e.what()).find("not a PNG or JPEG file"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("not a PNG or JPEG file"), std::string::npos)
+                << e.what();
             EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
         }
     }

@@ -1,8 +1,8 @@
 // Photos are read upright: a JPEG whose EXIF Orientation says "rotate" comes out of readImage
 // rotated. Known answer: a stored image of four coloured quadrants, and where each quadrant
 // must land for every orientation.
-#include "image/image_io.h"
 #include "image/image_orientation.h"
+#include "image/image_io.h"
 #include "tests/support/exif_jpeg.h"
 
 #include <gtest/gtest.h>
@@ -14,8 +14,8 @@ namespace lh {
 namespace {
 
 // Quadrant colours of the stored image: top-left, top-right, bottom-left, bottom-right.
-constexpr std::array<std::array<unsigned char, 3>, 4> kQuadrant = {{
-    {255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 255}}};
+constexpr std::array<std::array<unsigned char, 3>, 4> kQuadrant = {
+    {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 255}}};
 
 // A stored w x h image (multiples of 16, so that JPEG blocks do not straddle quadrants).
 std::vector<unsigned char> quadrants(int w, int h) {
@@ -34,7 +34,8 @@ int quadrantAt(const ImageRGB& image, double fx, double fy) {
     const float* p = image.at(int(fx * image.width), int(fy * image.height));
     for (int q = 0; q < 4; ++q) {
         bool match = true;
-        for (int k = 0; k < 3; ++k) match = match && std::abs(p[k] - kQuadrant[q][k] / 255.0f) < 0.1f;
+        for (int k = 0; k < 3; ++k)
+            match = match && std::abs(p[k] - kQuadrant[q][k] / 255.0f) < 0.1f;
         if (match) return q;
     }
     return -1;
@@ -50,26 +51,27 @@ TEST(ImageOrientation, ReadImageTurnsEveryOrientationUpright) {
     const int w = 64, h = 32;
     // TL=0, TR=1, BL=2, BR=3 stored; what the upright corners show, per orientation 1..8.
     const std::array<std::array<int, 4>, 8> expected = {{
-        {0, 1, 2, 3},   // 1 as stored
-        {1, 0, 3, 2},   // 2 mirrored left-right
-        {3, 2, 1, 0},   // 3 rotated 180
-        {2, 3, 0, 1},   // 4 mirrored top-bottom
-        {0, 2, 1, 3},   // 5 transposed
-        {2, 0, 3, 1},   // 6 rotated 90 clockwise
-        {3, 1, 2, 0},   // 7 transverse
-        {1, 3, 0, 2},   // 8 rotated 90 counter-clockwise
+        {0, 1, 2, 3},  // 1 as stored
+        {1, 0, 3, 2},  // 2 mirrored left-right
+        {3, 2, 1, 0},  // 3 rotated 180
+        {2, 3, 0, 1},  // 4 mirrored top-bottom
+        {0, 2, 1, 3},  // 5 transposed
+        {2, 0, 3, 1},  // 6 rotated 90 clockwise
+        {3, 1, 2, 0},  // 7 transverse
+        {1, 3, 0, 2},  // 8 rotated 90 counter-clockwise
     }};
     for (int orientation = 1; orientation <= 8; ++orientation) {
         test::ExifTags tags;
         tags.orientation = orientation;
-        const std::string path = test::makeJpeg("orient" + std::to_string(orientation) + ".jpg", w, h,
-                                                tags, quadrants(w, h));
+        const std::string path = test::makeJpeg("orient" + std::to_string(orientation) + ".jpg", w,
+                                                h, tags, quadrants(w, h));
         EXPECT_EQ(exifOrientation(path), orientation);
         const ImageRGB image = readImage(path);
         const bool swapped = orientation >= 5;
         EXPECT_EQ(image.width, swapped ? h : w) << "orientation " << orientation;
         EXPECT_EQ(image.height, swapped ? w : h) << "orientation " << orientation;
-        EXPECT_EQ(uprightQuadrants(image), expected[orientation - 1]) << "orientation " << orientation;
+        EXPECT_EQ(uprightQuadrants(image), expected[orientation - 1])
+            << "orientation " << orientation;
     }
 }
 

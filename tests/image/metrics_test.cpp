@@ -6,13 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
-#include <unistd.h>
 
 namespace lh {
 namespace {
@@ -70,9 +70,9 @@ TEST(Metrics, AngularErrorOfKnownVectors) {
 
 TEST(Metrics, AngularErrorSkipsPixelsAtOrBelowNorm1e6) {
     ImageRGB pred = uniform(3, 1, 1.f, 0.f, 0.f), gt = uniform(3, 1, 1.f, 1.f, 0.f);  // 45 deg
-    pred.at(1, 0)[0] = 1e-6f;  // pixel 1: dark prediction (would be 45 deg)
+    pred.at(1, 0)[0] = 1e-6f;                      // pixel 1: dark prediction (would be 45 deg)
     gt.at(2, 0)[0] = 0.f, gt.at(2, 0)[1] = 5e-7f;  // pixel 2: dark truth (would be 90 deg)
-    gt.at(0, 0)[1] = 0.f;  // pixel 0: exact, 0 deg
+    gt.at(0, 0)[1] = 0.f;                          // pixel 0: exact, 0 deg
     EXPECT_NEAR(angularErrorDegrees(pred, gt), 0.0, 1e-12);  // only pixel 0 counts
 
     const ImageRGB black = uniform(3, 1, 0.f, 0.f, 0.f);
@@ -135,7 +135,8 @@ TEST(Metrics, RejectsMismatchedOrNonFiniteInput) {
     EXPECT_THROW(angularErrorDegrees(small, large), InputError);
     EXPECT_THROW(compareEnvmaps(large, small), InputError);
 
-    for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    for (float bad :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
         ImageRGB pred = small;
         pred.at(1, 1)[2] = bad;
         try {
@@ -218,7 +219,8 @@ TEST(HdrMetrics, BrightCapAtPlusXLightsOnlyPlusX) {
     EXPECT_NEAR(e.at(AxisNormal::PlusX)[0], M_PI / 4.0, 0.03 * M_PI / 4.0);
     EXPECT_EQ(e.at(AxisNormal::MinusX)[0], 0.0);
     const double side = alpha - std::sin(2.0 * alpha) / 2.0;
-    for (AxisNormal n : {AxisNormal::PlusY, AxisNormal::MinusY, AxisNormal::PlusZ, AxisNormal::MinusZ})
+    for (AxisNormal n :
+         {AxisNormal::PlusY, AxisNormal::MinusY, AxisNormal::PlusZ, AxisNormal::MinusZ})
         EXPECT_NEAR(e.at(n)[1], side, 0.03 * side) << "normal " << int(n);
 }
 

@@ -13,7 +13,8 @@ namespace {
 std::vector<double> drawnXs(const std::string& svg) {
     std::vector<double> xs;
     const std::regex item("<circle cx='([-0-9.e]+)'|<line x1='([-0-9.e]+)'[^>]*stroke-dasharray");
-    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), item); it != std::sregex_iterator(); ++it)
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), item); it != std::sregex_iterator();
+         ++it)
         xs.push_back(std::stod((*it)[1].matched ? (*it)[1].str() : (*it)[2].str()));
     return xs;
 }
@@ -44,8 +45,12 @@ TEST(SvgPlot, LogAxisOrdersPointsAndFloorsZero) {
 
 // Settings worth choosing: nothing else is both faster and more accurate.
 TEST(SvgPlot, LowerLeftFrontKeepsWhatNothingBeats) {
-    const std::vector<PlotPoint> front = lowerLeftFront({{5, 0.1, "a"}, {2, 1.0, "b"}, {3, 2.0, "beaten by b"},
-                                                        {5, 0.05, "c"}, {9, 0.07, "beaten by c"}, {10, 0.01, "d"}});
+    const std::vector<PlotPoint> front = lowerLeftFront({{5, 0.1, "a"},
+                                                         {2, 1.0, "b"},
+                                                         {3, 2.0, "beaten by b"},
+                                                         {5, 0.05, "c"},
+                                                         {9, 0.07, "beaten by c"},
+                                                         {10, 0.01, "d"}});
     std::vector<std::string> names;
     for (const PlotPoint& p : front) names.push_back(p.tooltip);
     EXPECT_EQ(names, (std::vector<std::string>{"b", "c", "d"}));
@@ -61,7 +66,8 @@ TEST(SvgPlot, LowerLeftFrontKeepsWhatNothingBeats) {
 // XML (browsers draw nothing of an SVG that is not well-formed).
 TEST(SvgPlot, TextIsEscaped) {
     PlotSeries s{"ours & theirs", "red", {{10, 1e-3, "step 0.5, T<0.01"}}, false, {}};
-    const std::string svg = svgPlot({"ms <per envmap>", true}, {"rmse", true, 10, 1e-6}, {s}, {{20, "a'b"}});
+    const std::string svg =
+        svgPlot({"ms <per envmap>", true}, {"rmse", true, 10, 1e-6}, {s}, {{20, "a'b"}});
     EXPECT_NE(svg.find("<title>step 0.5, T&lt;0.01</title>"), std::string::npos) << svg;
     EXPECT_NE(svg.find(">ours &amp; theirs<"), std::string::npos) << svg;
     EXPECT_NE(svg.find(">ms &lt;per envmap&gt;<"), std::string::npos) << svg;
@@ -81,8 +87,10 @@ TEST(PlotImage, DotsLandWhereTheSvgPutsThem) {
     ASSERT_EQ(image.height, 420);
     const std::regex circle("<circle cx='([-0-9.e]+)' cy='([-0-9.e]+)'");
     int dots = 0;
-    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator(); ++it, ++dots) {
-        const float* p = image.at(int(std::lround(std::stod((*it)[1].str()))), int(std::lround(std::stod((*it)[2].str()))));
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle);
+         it != std::sregex_iterator(); ++it, ++dots) {
+        const float* p = image.at(int(std::lround(std::stod((*it)[1].str()))),
+                                  int(std::lround(std::stod((*it)[2].str()))));
         EXPECT_FLOAT_EQ(p[0], 1.f);
         EXPECT_FLOAT_EQ(p[1], 0.f);
         EXPECT_FLOAT_EQ(p[2], 0.f);

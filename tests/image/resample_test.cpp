@@ -19,8 +19,9 @@ ImageRGB imageOf(int w, int h, const std::vector<float>& values) {
 }
 
 TEST(ResizeImage, HalvingAveragesEachTwoByTwoBlock) {
-    const ImageRGB image = imageOf(4, 2, {1, 3, 10, 20,  //
-                                          5, 7, 30, 40});
+    const ImageRGB image = imageOf(4, 2,
+                                   {1, 3, 10, 20,  //
+                                    5, 7, 30, 40});
     const ImageRGB half = resizeImage(image, 2, 1);
     ASSERT_EQ(half.width, 2);
     ASSERT_EQ(half.height, 1);

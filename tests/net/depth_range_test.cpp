@@ -12,8 +12,10 @@ using test::renderPlane;
 
 TEST(DepthRange, BracketsATexturedPlaneAtItsDepth) {
     for (double depth : {1.2, 3.0, 7.5}) {
-        const PinholeCamera ref = planeCamera(128, 96), src = planeCamera(128, 96, Vec3d(0.15, 0.02, 0.0));
-        const DepthRange r = estimateDepthRange(renderPlane(ref, depth), renderPlane(src, depth), ref, src);
+        const PinholeCamera ref = planeCamera(128, 96),
+                            src = planeCamera(128, 96, Vec3d(0.15, 0.02, 0.0));
+        const DepthRange r =
+            estimateDepthRange(renderPlane(ref, depth), renderPlane(src, depth), ref, src);
         EXPECT_FALSE(r.fallback);
         EXPECT_LT(r.near, depth) << depth;
         EXPECT_GT(r.far, depth) << depth;

@@ -9,8 +9,8 @@
 //   - the world size, rank and rendezvous come from flags, torchrun's variables or srun's.
 // The processes are this test executable again (DistributedWorker.Train, which does nothing
 // unless LH_DIST_WORKER is set), started with posix_spawn.
-#include "core/errors.h"
 #include "net/distributed.h"
+#include "core/errors.h"
 #include "net/lighthouse_net.h"
 #include "net/trainer.h"
 #include "synth/dataset.h"
@@ -71,7 +71,8 @@ std::string env(const char* name) {
 
 // A rank of a data-parallel run, when started by the tests below.
 TEST(DistributedWorker, Train) {
-    if (env("LH_DIST_WORKER").empty()) GTEST_SKIP() << "runs only as a process started by the tests below";
+    if (env("LH_DIST_WORKER").empty())
+        GTEST_SKIP() << "runs only as a process started by the tests below";
     TrainOptions o = commonOptions(env("LH_DIST_DATA"), env("LH_DIST_OUT"));
     o.iterations = std::atoi(env("LH_DIST_ITERATIONS").c_str());
     DistributedFlags flags;
@@ -108,14 +109,19 @@ pid_t spawnRank(int rank, int port, const std::string& data, const std::string& 
                 const std::string& log) {
     std::vector<std::string> vars;
     for (char** e = environ; *e; ++e) vars.push_back(*e);
-    for (const auto& [k, v] : std::map<std::string, std::string>{
-             {"LH_DIST_WORKER", "1"}, {"LH_DIST_RANK", std::to_string(rank)}, {"LH_DIST_PORT", std::to_string(port)},
-             {"LH_DIST_DATA", data}, {"LH_DIST_OUT", out}, {"LH_DIST_ITERATIONS", std::to_string(iterations)}})
+    for (const auto& [k, v] :
+         std::map<std::string, std::string>{{"LH_DIST_WORKER", "1"},
+                                            {"LH_DIST_RANK", std::to_string(rank)},
+                                            {"LH_DIST_PORT", std::to_string(port)},
+                                            {"LH_DIST_DATA", data},
+                                            {"LH_DIST_OUT", out},
+                                            {"LH_DIST_ITERATIONS", std::to_string(iterations)}})
         vars.push_back(k + "=" + v);
     std::vector<char*> envp;
     for (auto& v : vars) envp.push_back(v.data());
     envp.push_back(nullptr);
-    std::string exe = fs::read_symlink("/proc/self/exe").string(), filter = "--gtest_filter=DistributedWorker.Train";
+    std::string exe = fs::read_symlink("/proc/self/exe").string(),
+                filter = "--gtest_filter=DistributedWorker.Train";
     char* argv[] = {exe.data(), filter.data(), nullptr};
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
@@ -133,7 +139,8 @@ int waitFor(pid_t pid, double seconds) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     while (std::chrono::steady_clock::now() < deadline) {
         int status = 0;
-        if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        if (::waitpid(pid, &status, WNOHANG) == pid)
+            return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     ::kill(pid, SIGKILL);
@@ -160,7 +167,8 @@ protected:
         return path;
     }
     static void removeOutputs(const std::string& out) {
-        for (const std::string suffix : {"", ".csv", ".png", ".checkpoint"}) fs::remove(out + suffix);
+        for (const std::string suffix : {"", ".csv", ".png", ".checkpoint"})
+            fs::remove(out + suffix);
     }
 };
 
@@ -172,7 +180,8 @@ TEST_F(DistributedTest, TwoRanksWithHalfTheBatchEachEndWithTheWeightsOfOneProces
     train(commonOptions(dataDir(), oneOut), log);
 
     const int port = freePort();
-    const std::string log0 = test::uniqueTempPath("dist_rank0.log"), log1 = test::uniqueTempPath("dist_rank1.log");
+    const std::string log0 = test::uniqueTempPath("dist_rank0.log"),
+                      log1 = test::uniqueTempPath("dist_rank1.log");
     const pid_t r0 = spawnRank(0, port, dataDir(), twoOut, 3, log0);
     const pid_t r1 = spawnRank(1, port, dataDir(), rank1Out, 3, log1);
     const int s0 = waitFor(r0, 240), s1 = waitFor(r1, 60);
@@ -188,10 +197,13 @@ TEST_F(DistributedTest, TwoRanksWithHalfTheBatchEachEndWithTheWeightsOfOneProces
     const auto pa = one->named_parameters(), pb = two->named_parameters();
     ASSERT_EQ(pa.size(), pb.size());
     double worst = 0;
-    for (const auto& p : pa) worst = std::max(worst, (p.value() - pb[p.key()]).abs().max().item<double>());
-    EXPECT_LT(worst, 1e-4) << "largest weight difference between 1 process x batch 2 and 2 ranks x 1";
+    for (const auto& p : pa)
+        worst = std::max(worst, (p.value() - pb[p.key()]).abs().max().item<double>());
+    EXPECT_LT(worst, 1e-4)
+        << "largest weight difference between 1 process x batch 2 and 2 ranks x 1";
     // Not vacuous: training moved the weights, and batch 1 on one process ends elsewhere.
-    TrainOptions single = commonOptions(dataDir(), test::uniqueTempPath("lighthouse_dist_batch1.pt"));
+    TrainOptions single =
+        commonOptions(dataDir(), test::uniqueTempPath("lighthouse_dist_batch1.pt"));
     single.batch = 1;
     train(single, log);
     LighthouseNet batch1 = loadModel(single.out, torch::Device(torch::kCPU));
@@ -200,8 +212,8 @@ TEST_F(DistributedTest, TwoRanksWithHalfTheBatchEachEndWithTheWeightsOfOneProces
         other = std::max(other, (p.value() - pa[p.key()]).abs().max().item<double>());
     EXPECT_GT(other, 100 * worst) << "batch 1 should train to other weights than batch 2";
     EXPECT_GT(other, 1e-4);
-    std::cerr << "largest weight difference: " << worst << " (2 ranks x 1 vs 1 process x 2); " << other
-              << " (batch 1 vs batch 2)\n";
+    std::cerr << "largest weight difference: " << worst << " (2 ranks x 1 vs 1 process x 2); "
+              << other << " (batch 1 vs batch 2)\n";
     for (const auto& out : {oneOut, twoOut, rank1Out, single.out}) removeOutputs(out);
     fs::remove(log0);
     fs::remove(log1);
@@ -211,7 +223,8 @@ TEST_F(DistributedTest, ARankThatDiesMakesTheOtherFailWithAClearError) {
     const std::string out0 = test::uniqueTempPath("lighthouse_dist_die0.pt");
     const std::string out1 = test::uniqueTempPath("lighthouse_dist_die1.pt");
     const int port = freePort();
-    const std::string log0 = test::uniqueTempPath("dist_die0.log"), log1 = test::uniqueTempPath("dist_die1.log");
+    const std::string log0 = test::uniqueTempPath("dist_die0.log"),
+                      log1 = test::uniqueTempPath("dist_die1.log");
     const pid_t r0 = spawnRank(0, port, dataDir(), out0, 100000, log0);
     const pid_t r1 = spawnRank(1, port, dataDir(), out1, 100000, log1);
     // Wait until training runs (rank 0 has logged an iteration), then kill rank 1.
@@ -219,19 +232,23 @@ TEST_F(DistributedTest, ARankThatDiesMakesTheOtherFailWithAClearError) {
     while (readText(out0 + ".csv").find("\n1,") == std::string::npos &&
            std::chrono::steady_clock::now() - start < std::chrono::seconds(120))
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    ASSERT_NE(readText(out0 + ".csv").find("\n1,"), std::string::npos) << "training never started:\n" << readText(log0);
+    ASSERT_NE(readText(out0 + ".csv").find("\n1,"), std::string::npos)
+        << "training never started:\n"
+        << readText(log0);
     ::kill(r1, SIGKILL);
     EXPECT_EQ(waitFor(r1, 10), 128 + SIGKILL);
     const auto killed = std::chrono::steady_clock::now();
     const int s0 = waitFor(r0, 50);  // the collectives' timeout is 60 s; a dead peer is seen sooner
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - killed).count();
     ASSERT_NE(s0, -1) << "rank 0 still waiting 50 s after rank 1 died:\n" << readText(log0);
     EXPECT_EQ(s0, 3) << readText(log0);
     const std::string text = readText(log0);
-    EXPECT_NE(text.find("worker error: distributed training, rank 0 of 2: "), std::string::npos) << text;
+    EXPECT_NE(text.find("worker error: distributed training, rank 0 of 2: "), std::string::npos)
+        << text;
     EXPECT_NE(text.find("another rank died"), std::string::npos) << text;
-    std::cerr << "rank 0 failed " << seconds << " s after rank 1 was killed: "
-              << text.substr(text.find("worker error: ")) ;
+    std::cerr << "rank 0 failed " << seconds
+              << " s after rank 1 was killed: " << text.substr(text.find("worker error: "));
     removeOutputs(out0);
     removeOutputs(out1);
     fs::remove(log0);
@@ -256,16 +273,20 @@ TEST(DistributedOptions, FlagsComeFirstThenTorchrunThenSrun) {
     EXPECT_EQ(o.masterAddress, "node7");
     EXPECT_EQ(o.masterPort, 1234);
 
-    vars = {{"WORLD_SIZE", "2"}, {"RANK", "1"}, {"MASTER_ADDR", "10.0.0.1"}, {"MASTER_PORT", "29400"},
-            {"SLURM_STEP_ID", "0"}, {"SLURM_PROCID", "5"}, {"SLURM_STEP_NUM_TASKS", "8"}};
+    vars = {{"WORLD_SIZE", "2"},          {"RANK", "1"},          {"MASTER_ADDR", "10.0.0.1"},
+            {"MASTER_PORT", "29400"},     {"SLURM_STEP_ID", "0"}, {"SLURM_PROCID", "5"},
+            {"SLURM_STEP_NUM_TASKS", "8"}};
     o = resolveDistributed({}, getenv);
     EXPECT_EQ(o.worldSize, 2);
     EXPECT_EQ(o.rank, 1);
     EXPECT_EQ(o.masterAddress, "10.0.0.1");
     EXPECT_EQ(o.masterPort, 29400);
 
-    vars = {{"SLURM_STEP_ID", "0"}, {"SLURM_PROCID", "5"}, {"SLURM_STEP_NUM_TASKS", "8"},
-            {"SLURM_LAUNCH_NODE_IPADDR", "10.0.0.9"}, {"SLURM_JOB_ID", "123456"}};
+    vars = {{"SLURM_STEP_ID", "0"},
+            {"SLURM_PROCID", "5"},
+            {"SLURM_STEP_NUM_TASKS", "8"},
+            {"SLURM_LAUNCH_NODE_IPADDR", "10.0.0.9"},
+            {"SLURM_JOB_ID", "123456"}};
     o = resolveDistributed({}, getenv);
     EXPECT_EQ(o.worldSize, 8);
     EXPECT_EQ(o.rank, 5);

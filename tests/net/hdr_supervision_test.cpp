@@ -31,7 +31,7 @@ TEST(Hdr, ActivationExceedsOneAndStaysFinite) {
     EXPECT_TRUE(torch::isfinite(y).all().item<bool>());
     EXPECT_GT(y.min().item<double>(), 0.0);
     EXPECT_NEAR(y[3].item<double>(), std::exp(2.0), 1e-2);  // the soft clamp bends it by 0.1%
-    EXPECT_GT(y[4].item<double>(), 100.0);  // a lamp
+    EXPECT_GT(y[4].item<double>(), 100.0);                  // a lamp
     EXPECT_NEAR(y[6].item<double>(), std::exp(kMaxLogRadiance), 1.0);
 }
 
@@ -66,8 +66,8 @@ TEST(Losses, AxisIrradianceOfAConstantEnvmapIsPiTimesItsRadiance) {
     auto upper = torch::zeros({1, 3, 60, 120});
     upper.narrow(2, 0, 30).fill_(1.0);
     const auto u = axisIrradianceTensor(upper);
-    EXPECT_NEAR(u[0][1][3].item<double>(), M_PI, 2e-3 * M_PI);  // normal -y: up
-    EXPECT_NEAR(u[0][1][2].item<double>(), 0.0, 1e-6);          // normal +y: down
+    EXPECT_NEAR(u[0][1][3].item<double>(), M_PI, 2e-3 * M_PI);      // normal -y: up
+    EXPECT_NEAR(u[0][1][2].item<double>(), 0.0, 1e-6);              // normal +y: down
     EXPECT_NEAR(u[0][1][0].item<double>(), M_PI / 2, 2e-3 * M_PI);  // sideways: half the sky
 }
 
@@ -83,7 +83,8 @@ TEST(Losses, IrradianceLossIsZeroOnIdenticalInputsAndIndifferentToWhereALampIs) 
     const double missing = irradianceLoss(room, lamp).item<double>();
     EXPECT_GT(missing, 0.3);
     EXPECT_LT(shifted, 0.3 * missing);  // 0.08 against 0.37
-    EXPECT_GT(hdrImageLoss(moved, lamp).item<double>(), 0.5 * hdrImageLoss(room, lamp).item<double>());
+    EXPECT_GT(hdrImageLoss(moved, lamp).item<double>(),
+              0.5 * hdrImageLoss(room, lamp).item<double>());
 }
 
 TEST(Losses, VoxelLossIsMinimalOnIdenticalCubesAndKnownOtherwise) {
@@ -97,7 +98,8 @@ TEST(Losses, VoxelLossIsMinimalOnIdenticalCubesAndKnownOtherwise) {
     // Everything empty instead: on the opaque half (weight 3, against weight 1 for the empty
     // half) alpha costs 1 + 0.1 (-ln 1e-4) and colour ln(1 + 2) - ln(1 + 0).
     const auto empty = torch::zeros_like(cube);
-    const double expected = (3.0 * (1.0 - 0.1 * std::log(1e-4) + std::log(3.0)) + 1.0 * floor) / (3.0 + 1.0);
+    const double expected =
+        (3.0 * (1.0 - 0.1 * std::log(1e-4) + std::log(3.0)) + 1.0 * floor) / (3.0 + 1.0);
     EXPECT_NEAR(voxelLoss({empty}, {cube}).item<double>(), expected, 1e-4);
 }
 
@@ -133,7 +135,9 @@ TEST(Losses, MpiDepthLossIsZeroAtTheTrueDepthAndGrowsAwayFromIt) {
     EXPECT_NEAR(near, 1.0 / 15.0, 1e-4);  // one plane of 15 steps
     EXPECT_NEAR(far, 7.0 / 15.0, 1e-4);
     // A transparent MPI puts everything on the far plane.
-    EXPECT_NEAR(mpiExpectedDisparity(torch::zeros({1, 4, 16, 8, 8}), depths)[0][0][0][0].item<double>(), 0.25, 1e-6);
+    EXPECT_NEAR(
+        mpiExpectedDisparity(torch::zeros({1, 4, 16, 8, 8}), depths)[0][0][0][0].item<double>(),
+        0.25, 1e-6);
 }
 
 TEST(Losses, SparsityLossIsTheMeanAlpha) {
@@ -181,7 +185,12 @@ std::vector<torch::Tensor> emptyRoomCubes(int levels, int r) {
 
 double interiorAlpha(const torch::Tensor& cube) {
     const int64_t r = cube.size(2);
-    return cube.narrow(1, 3, 1).narrow(2, 4, r - 8).narrow(3, 4, r - 8).narrow(4, 4, r - 8).mean().item<double>();
+    return cube.narrow(1, 3, 1)
+        .narrow(2, 4, r - 8)
+        .narrow(3, 4, r - 8)
+        .narrow(4, 4, r - 8)
+        .mean()
+        .item<double>();
 }
 
 TEST(DirectSupervision, AnEmptyRoomPredictsEmptySpaceInsideAfterBriefTraining) {

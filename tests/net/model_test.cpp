@@ -31,7 +31,8 @@ PairInputs tinyPair(const NetConfig& config) {
 }
 
 bool allIn(const torch::Tensor& t, double lo, double hi) {
-    return torch::isfinite(t).all().item<bool>() && t.min().item<double>() >= lo && t.max().item<double>() <= hi;
+    return torch::isfinite(t).all().item<bool>() && t.min().item<double>() >= lo &&
+           t.max().item<double>() <= hi;
 }
 
 TEST(Model, EveryStageHasItsShapeAndRange) {
@@ -106,7 +107,8 @@ TEST(Model, FewStepsOnATinySceneLowerTheLoss) {
     const auto loss = [&] {
         const PipelineOutput out = net->run(in);
         return imageLoss(renderMpiView(out.mpi, in.depths, in.ref, tgt), tgtImage) +
-               imageLoss(renderEnvmapTorch(out.cubes, in.layout, Vec3d(0, 0, 1), 16, 8, 32), envTarget);
+               imageLoss(renderEnvmapTorch(out.cubes, in.layout, Vec3d(0, 0, 1), 16, 8, 32),
+                         envTarget);
     };
     const double first = loss().item<double>();
     for (int step = 0; step < 25; ++step) {
@@ -145,7 +147,8 @@ TEST(Model, ColourAnchorPaintsInventedColoursInThePhotosMeanColour) {
             ASSERT_GT(empty.sum().item<int64_t>(), 100) << "level " << k;
             for (int c = 0; c < 3; ++c) {
                 const auto invented = out.cubes[k][0][c].masked_select(empty) * 2.0;
-                EXPECT_NEAR(invented.mean().item<double>(), mean[c].item<double>(), 0.01 * mean[c].item<double>())
+                EXPECT_NEAR(invented.mean().item<double>(), mean[c].item<double>(),
+                            0.01 * mean[c].item<double>())
                     << "level " << k << " channel " << c << " exposure " << exposure;
                 EXPECT_LT((invented.max() - invented.min()).item<double>(), 1e-4 * exposure);
             }
@@ -153,7 +156,8 @@ TEST(Model, ColourAnchorPaintsInventedColoursInThePhotosMeanColour) {
     }
     NetConfig withoutAnchor = config;
     withoutAnchor.colourAnchor = false;
-    EXPECT_TRUE(config.sameParameters(withoutAnchor));  // train --init fine-tunes one into the other
+    EXPECT_TRUE(
+        config.sameParameters(withoutAnchor));  // train --init fine-tunes one into the other
     withoutAnchor.baseWidth = 8;
     EXPECT_FALSE(config.sameParameters(withoutAnchor));
     EXPECT_TRUE(NetConfig::fromJson(config.toJson(), "test").colourAnchor);
@@ -190,9 +194,11 @@ TEST(Model, WeightAverageMovesByOneMinusTheDecayPerUpdate) {
         for (auto& p : current->parameters()) p.fill_(1.0);
     }
     updateWeightAverage(average, current, 0.75);
-    for (const auto& p : average->parameters()) EXPECT_TRUE(torch::allclose(p, torch::full_like(p, 0.25)));
+    for (const auto& p : average->parameters())
+        EXPECT_TRUE(torch::allclose(p, torch::full_like(p, 0.25)));
     updateWeightAverage(average, current, 0.75);
-    for (const auto& p : average->parameters()) EXPECT_TRUE(torch::allclose(p, torch::full_like(p, 0.4375)));
+    for (const auto& p : average->parameters())
+        EXPECT_TRUE(torch::allclose(p, torch::full_like(p, 0.4375)));
     for (const auto& p : average->parameters()) EXPECT_FALSE(p.grad().defined());
 }
 
@@ -230,7 +236,9 @@ TEST(Model, HalfPrecisionModelIsHalfTheSizeAndGivesNearlyTheSameOutputs) {
     const PipelineOutput a = net->run(in), b = loaded->run(in);
     EXPECT_LT((a.mpi - b.mpi).abs().max().item<double>(), 2e-2);
     for (size_t k = 0; k < a.cubes.size(); ++k)
-        EXPECT_LT(((a.cubes[k] - b.cubes[k]).abs() / (a.cubes[k].abs() + 1e-2)).max().item<double>(), 5e-2);
+        EXPECT_LT(
+            ((a.cubes[k] - b.cubes[k]).abs() / (a.cubes[k].abs() + 1e-2)).max().item<double>(),
+            5e-2);
     // The network it was saved from still trains in float32.
     for (const auto& p : net->parameters()) EXPECT_EQ(p.scalar_type(), torch::kFloat32);
     std::filesystem::remove(full);
@@ -251,22 +259,28 @@ TEST(Losses, SpectralNormBoundsTheLayerGain) {
     conv->weight.data().mul_(50.0);  // a layer with a large gain
     for (int i = 0; i < 30; ++i) conv->forward(torch::randn({1, 3, 8, 8}));  // power iterations
     const auto matrix = (conv->weight / 1.0).view({8, -1});
-    const double sigmaMax = std::get<1>(torch::linalg::svd(matrix, false, c10::nullopt))[0].item<double>();
+    const double sigmaMax =
+        std::get<1>(torch::linalg::svd(matrix, false, c10::nullopt))[0].item<double>();
     const auto v = torch::randn({matrix.size(1)});
     conv->eval();
     // The normalised weight's largest singular value is 1.
     const auto normalised = matrix / sigmaMax;
-    EXPECT_NEAR(std::get<1>(torch::linalg::svd(normalised, false, c10::nullopt))[0].item<double>(), 1.0, 1e-4);
+    EXPECT_NEAR(std::get<1>(torch::linalg::svd(normalised, false, c10::nullopt))[0].item<double>(),
+                1.0, 1e-4);
     // And the layer's own estimate matches it.
     const auto u = conv->u;
-    const auto vv = torch::nn::functional::normalize(torch::mv(matrix.t(), u), torch::nn::functional::NormalizeFuncOptions().dim(0));
+    const auto vv = torch::nn::functional::normalize(
+        torch::mv(matrix.t(), u), torch::nn::functional::NormalizeFuncOptions().dim(0));
     EXPECT_NEAR(torch::dot(u, torch::mv(matrix, vv)).item<double>(), sigmaMax, 1e-3 * sigmaMax);
     (void)v;
 }
 
 TEST(Losses, HingeLossesHaveTheirKnownValues) {
-    EXPECT_NEAR(discriminatorHingeLoss(torch::full({4}, 2.0), torch::full({4}, -2.0)).item<double>(), 0.0, 1e-9);
-    EXPECT_NEAR(discriminatorHingeLoss(torch::zeros({4}), torch::zeros({4})).item<double>(), 2.0, 1e-9);
+    EXPECT_NEAR(
+        discriminatorHingeLoss(torch::full({4}, 2.0), torch::full({4}, -2.0)).item<double>(), 0.0,
+        1e-9);
+    EXPECT_NEAR(discriminatorHingeLoss(torch::zeros({4}), torch::zeros({4})).item<double>(), 2.0,
+                1e-9);
     EXPECT_NEAR(generatorHingeLoss(torch::full({4}, 0.5)).item<double>(), -0.5, 1e-9);
 }
 
@@ -292,11 +306,13 @@ namespace {
 
 std::string writeVggArchive(const std::string& name, bool complete) {
     torch::jit::Module archive("VggWeights");
-    const int widths[16] = {64, 64, 128, 128, 256, 256, 256, 256, 512, 512, 512, 512, 512, 512, 512, 512};
+    const int widths[16] = {64,  64,  128, 128, 256, 256, 256, 256,
+                            512, 512, 512, 512, 512, 512, 512, 512};
     int in = 3;
     for (int c = 0; c < (complete ? 16 : 10); ++c) {
         const std::string stem = std::to_string(VggPerceptualLoss::kConvIndices[c]);
-        archive.register_buffer(stem + "_weight", torch::randn({widths[c], in, 3, 3}) * std::sqrt(2.0 / (in * 9)));
+        archive.register_buffer(stem + "_weight",
+                                torch::randn({widths[c], in, 3, 3}) * std::sqrt(2.0 / (in * 9)));
         archive.register_buffer(stem + "_bias", torch::zeros({widths[c]}));
         in = widths[c];
     }

@@ -23,7 +23,8 @@ inline PinholeCamera planeCamera(int width, int height, const Vec3d& position = 
 
 // Deterministic hash of an integer cell and channel -> [0, 1).
 inline double cellNoise(long long i, long long j, int channel) {
-    unsigned long long h = (unsigned long long)(i * 73856093LL) ^ (unsigned long long)(j * 19349663LL) ^
+    unsigned long long h = (unsigned long long)(i * 73856093LL) ^
+                           (unsigned long long)(j * 19349663LL) ^
                            (unsigned long long)(channel * 83492791LL);
     h ^= h >> 33;
     h *= 0xff51afd7ed558ccdULL;
@@ -39,8 +40,9 @@ inline void planeTexture(double x, double y, float rgb[3]) {
     const long long i = (long long)std::floor(u), j = (long long)std::floor(v);
     const double a = u - double(i), b = v - double(j);
     for (int c = 0; c < 3; ++c)
-        rgb[c] = float(0.1 + 0.8 * ((cellNoise(i, j, c) * (1 - a) + cellNoise(i + 1, j, c) * a) * (1 - b) +
-                                    (cellNoise(i, j + 1, c) * (1 - a) + cellNoise(i + 1, j + 1, c) * a) * b));
+        rgb[c] = float(
+            0.1 + 0.8 * ((cellNoise(i, j, c) * (1 - a) + cellNoise(i + 1, j, c) * a) * (1 - b) +
+                         (cellNoise(i, j + 1, c) * (1 - a) + cellNoise(i + 1, j + 1, c) * a) * b));
 }
 
 // What `camera` sees of the plane z = depth (world frame); cameras look down +z.

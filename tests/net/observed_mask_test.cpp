@@ -43,19 +43,19 @@ ImageRGB positions(const std::vector<Vec3d>& points) {
 TEST(ObservedMask, ProjectsAndTestsAgainstTheDepthMap) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const std::vector<Vec3d> points = {
-        {0.5, 0.2, 4.0},    // on the wall, right half (pixel 22.5, 16): observed
-        {-1.0, 0.0, 4.0},   // on the wall behind the screen (pixel 15): hidden
-        {-1.0, 0.0, 2.0},   // on the screen itself (pixel 10): observed
-        {0.0, 0.0, -1.0},   // behind the camera
-        {10.0, 0.0, 4.0},   // right of the image (pixel 70)
-        {0.0, -3.5, 4.0},   // above the image (pixel row -2.5)
-        {nan, 0.0, 4.0},    // no hit
-        {0.0, 0.0, 0.0},    // synth's "no hit": the camera centre, z = 0
-        {0.5, 0.2, 4.09},   // 9 cm behind the wall: within 2% of 4 m + 2 cm = 10 cm
-        {0.5, 0.2, 4.2},    // 20 cm behind the wall: hidden
-        {-0.2, 0.0, 1.0},   // in front of the screen (pixel 16): nothing hides it
-        {0.99, 0.0, 1.0},   // pixel column 39.8: the last column is inside
-        {1.0, 0.0, 1.0},    // pixel column 40.0: the image's right edge is outside
+        {0.5, 0.2, 4.0},   // on the wall, right half (pixel 22.5, 16): observed
+        {-1.0, 0.0, 4.0},  // on the wall behind the screen (pixel 15): hidden
+        {-1.0, 0.0, 2.0},  // on the screen itself (pixel 10): observed
+        {0.0, 0.0, -1.0},  // behind the camera
+        {10.0, 0.0, 4.0},  // right of the image (pixel 70)
+        {0.0, -3.5, 4.0},  // above the image (pixel row -2.5)
+        {nan, 0.0, 4.0},   // no hit
+        {0.0, 0.0, 0.0},   // synth's "no hit": the camera centre, z = 0
+        {0.5, 0.2, 4.09},  // 9 cm behind the wall: within 2% of 4 m + 2 cm = 10 cm
+        {0.5, 0.2, 4.2},   // 20 cm behind the wall: hidden
+        {-0.2, 0.0, 1.0},  // in front of the screen (pixel 16): nothing hides it
+        {0.99, 0.0, 1.0},  // pixel column 39.8: the last column is inside
+        {1.0, 0.0, 1.0},   // pixel column 40.0: the image's right edge is outside
     };
     const std::vector<std::uint8_t> expected = {1, 0, 1, 0, 0, 0, 0, 0, 1, 0, 1, 1, 0};
     EXPECT_EQ(observedMaskFromDepth(positions(points), camera(), screenAndWall()), expected);

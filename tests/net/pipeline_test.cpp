@@ -32,11 +32,13 @@ TEST(PlaneSweep, TexturedPlaneIsSharpestAtTheNearestPlane) {
     ASSERT_EQ(psv.sizes(), (std::vector<int64_t>{1, 6, 16, 48, 64}));
 
     // Compare over the columns every plane's warp keeps inside the source image.
-    const auto diff = (psv.narrow(1, 0, 3) - psv.narrow(1, 3, 3)).abs().narrow(4, 0, 24).mean({0, 1, 3, 4});
+    const auto diff =
+        (psv.narrow(1, 0, 3) - psv.narrow(1, 3, 3)).abs().narrow(4, 0, 24).mean({0, 1, 3, 4});
     const int64_t best = diff.argmin().item<int64_t>();
     int64_t nearest = 0;
     for (size_t d = 0; d < depths.size(); ++d)
-        if (std::abs(1 / depths[d] - 1 / planeDepth) < std::abs(1 / depths[size_t(nearest)] - 1 / planeDepth))
+        if (std::abs(1 / depths[d] - 1 / planeDepth) <
+            std::abs(1 / depths[size_t(nearest)] - 1 / planeDepth))
             nearest = int64_t(d);
     EXPECT_EQ(best, nearest);
     EXPECT_LT(diff[best].item<double>(), 0.75 * diff.median().item<double>());
@@ -45,7 +47,8 @@ TEST(PlaneSweep, TexturedPlaneIsSharpestAtTheNearestPlane) {
 TEST(MpiRender, OpaquePlaneReprojectsIntoTheTargetView) {
     // One opaque plane carrying the texture at depth 2: the target view must see the texture
     // where the analytic rendering does.
-    const PinholeCamera ref = planeCamera(96, 64), tgt = planeCamera(96, 64, Vec3d(0.1, -0.05, 0.2));
+    const PinholeCamera ref = planeCamera(96, 64),
+                        tgt = planeCamera(96, 64, Vec3d(0.1, -0.05, 0.2));
     const std::vector<double> depths = disparityLinearDepths(1.5, 3.0, 16);
     auto mpi = torch::zeros({1, 4, 16, 64, 96});
     const int plane = 7;
@@ -58,7 +61,8 @@ TEST(MpiRender, OpaquePlaneReprojectsIntoTheTargetView) {
     int n = 0;
     for (int v = 8; v < 56; ++v)
         for (int u = 12; u < 84; ++u)
-            for (int c = 0; c < 3; ++c, ++n) err += std::abs(rendered.at(u, v)[c] - expected.at(u, v)[c]);
+            for (int c = 0; c < 3; ++c, ++n)
+                err += std::abs(rendered.at(u, v)[c] - expected.at(u, v)[c]);
     EXPECT_LT(err / n, 0.02);
 }
 
@@ -76,7 +80,8 @@ TEST(MpiResample, PlaneContentLandsAtItsWorldPosition) {
         const auto centres = voxelCentres(layout, level);
         const auto alpha = cube[0][3];
         int occupied = 0;
-        const double spacing = depths[plane] * depths[plane] * (1 / depths.back() - 1 / depths.front()) / 15;
+        const double spacing =
+            depths[plane] * depths[plane] * (1 / depths.back() - 1 / depths.front()) / 15;
         for (int z = 0; z < 32; ++z)
             for (int y = 0; y < 32; ++y)
                 for (int x = 0; x < 32; ++x) {
@@ -84,12 +89,15 @@ TEST(MpiResample, PlaneContentLandsAtItsWorldPosition) {
                     if (a <= 1e-4f) continue;
                     ++occupied;
                     const double wz = centres[z][y][x][2].item<double>();
-                    // Only voxels within one plane spacing of the plane's depth, inside the frustum.
+                    // Only voxels within one plane spacing of the plane's depth, inside the
+                    // frustum.
                     EXPECT_LT(std::abs(wz - depths[plane]), spacing + 1e-9) << "level " << level;
-                    const Vec3d px = ref.cameraToPixel(Vec3d(centres[z][y][x][0].item<double>(),
-                                                             centres[z][y][x][1].item<double>(), wz));
+                    const Vec3d px =
+                        ref.cameraToPixel(Vec3d(centres[z][y][x][0].item<double>(),
+                                                centres[z][y][x][1].item<double>(), wz));
                     EXPECT_TRUE(px.x() >= 0 && px.x() <= 64 && px.y() >= 0 && px.y() <= 48);
-                    EXPECT_NEAR(cube[0][0][z][y][x].item<float>(), 1.f, 1e-4);  // premultiplied: still red
+                    EXPECT_NEAR(cube[0][0][z][y][x].item<float>(), 1.f,
+                                1e-4);  // premultiplied: still red
                     EXPECT_NEAR(cube[0][1][z][y][x].item<float>(), 0.f, 1e-4);
                 }
         EXPECT_GT(occupied, 0) << "level " << level;
@@ -153,7 +161,8 @@ TEST(TrainingRenderer, AgreesWithTheRayMarcher) {
             se += std::pow(torchEnv.pixels[i] - marched.pixels[i], 2);
             mean += marched.pixels[i];
         }
-        const double rmse = std::sqrt(se / marched.pixels.size()), meanRadiance = mean / marched.pixels.size();
+        const double rmse = std::sqrt(se / marched.pixels.size()),
+                     meanRadiance = mean / marched.pixels.size();
         ASSERT_GT(meanRadiance, 0.02);
         // Stated tolerance: 3% of the mean radiance (the two differ only in sample placement
         // and in how a finer level's edge voxels interpolate: a clamped border here, the
@@ -178,7 +187,8 @@ TEST(TrainingRenderer, HomogeneousMediumMatchesTheAnalyticAnswer) {
     for (int row = 0; row < 8; ++row)
         for (int col = 0; col < 16; ++col) {
             const Vec3d d = envmapPixelDirection(row, col, 16, 8);
-            const double toFace = 1.0 / std::max({std::abs(d.x()), std::abs(d.y()), std::abs(d.z())});
+            const double toFace =
+                1.0 / std::max({std::abs(d.x()), std::abs(d.y()), std::abs(d.z())});
             // The outermost half voxel fades to empty (nothing outside level 0): stated 4%.
             const double expected = 0.7 * (1 - std::exp(-sigma * toFace));
             EXPECT_NEAR(image.at(col, row)[1], expected, 0.04 * expected) << row << "," << col;

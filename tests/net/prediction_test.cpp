@@ -45,11 +45,14 @@ protected:
 
     // Every stored value finite, and envmaps rendered from the volume finite too.
     static void expectFinitePrediction(const Prediction& p) {
-        EXPECT_TRUE(std::isfinite(p.range.near) && std::isfinite(p.range.far) && p.range.far > p.range.near);
+        EXPECT_TRUE(std::isfinite(p.range.near) && std::isfinite(p.range.far) &&
+                    p.range.far > p.range.near);
         for (const auto& level : p.volume.levels) {
-            for (auto it = level.density->cbeginValueOn(); it; ++it) EXPECT_TRUE(std::isfinite(*it) && *it >= 0);
+            for (auto it = level.density->cbeginValueOn(); it; ++it)
+                EXPECT_TRUE(std::isfinite(*it) && *it >= 0);
             for (auto it = level.color->cbeginValueOn(); it; ++it)
-                EXPECT_TRUE(std::isfinite((*it)[0]) && std::isfinite((*it)[1]) && std::isfinite((*it)[2]));
+                EXPECT_TRUE(std::isfinite((*it)[0]) && std::isfinite((*it)[1]) &&
+                            std::isfinite((*it)[2]));
         }
         EnvmapOptions options;
         options.width = 32;

@@ -1,9 +1,9 @@
 // `lighthouse train` on a tiny synthetic data set with oracles: a run interrupted and resumed
 // ends with the weights of an uninterrupted run, direct supervision uses the oracle and the
 // depth map, and the paper's mode trains without either.
+#include "net/trainer.h"
 #include "core/errors.h"
 #include "net/lighthouse_net.h"
-#include "net/trainer.h"
 #include "synth/dataset.h"
 #include "tests/net/net_test_scenes.h"
 #include "tests/net/tiny_training_set.h"
@@ -49,7 +49,8 @@ protected:
         return o;
     }
     static void removeOutputs(const TrainOptions& o) {
-        for (const std::string suffix : {"", ".csv", ".png", ".checkpoint"}) fs::remove(o.out + suffix);
+        for (const std::string suffix : {"", ".csv", ".png", ".checkpoint"})
+            fs::remove(o.out + suffix);
     }
     static std::string readText(const std::string& path) {
         std::ifstream in(path);
@@ -71,7 +72,8 @@ TEST_F(TrainerTest, ResumingGivesTheWeightsOfAnUninterruptedRun) {
     TrainOptions split = options("lighthouse_trainer_split");
     split.stopAfter = 2;
     train(split, log);
-    EXPECT_FALSE(fs::exists(split.out + ".csv") && readText(split.out + ".csv").find("\n4,") != std::string::npos);
+    EXPECT_FALSE(fs::exists(split.out + ".csv") &&
+                 readText(split.out + ".csv").find("\n4,") != std::string::npos);
     ASSERT_TRUE(fs::is_regular_file(split.checkpointPath()));
     split.stopAfter = 0;
     train(split, log);  // resumes at 2
@@ -82,7 +84,8 @@ TEST_F(TrainerTest, ResumingGivesTheWeightsOfAnUninterruptedRun) {
     const auto pa = a->named_parameters(), pb = b->named_parameters();
     ASSERT_EQ(pa.size(), pb.size());
     double worst = 0;
-    for (const auto& p : pa) worst = std::max(worst, (p.value() - pb[p.key()]).abs().max().item<double>());
+    for (const auto& p : pa)
+        worst = std::max(worst, (p.value() - pb[p.key()]).abs().max().item<double>());
     EXPECT_LT(worst, 1e-5) << "largest weight difference between the two runs";
     // The trained weights moved away from a fresh network's (the comparison is not vacuous).
     torch::manual_seed(3);
@@ -148,7 +151,7 @@ TEST_F(TrainerTest, PaperModeTrainsWithoutThreeDimensionalGroundTruth) {
     std::ostringstream log;
     TrainOptions o = options("lighthouse_trainer_paper");
     o.supervision = "paper";
-    o.iterations = 4;  // stage 1 at 0, stage 2 from 1, stage 3 from 3
+    o.iterations = 4;                      // stage 1 at 0, stage 2 from 1, stage 3 from 3
     o.configOverride->trainEnvWidth = 64;  // the PatchGAN discriminator needs at least 32 rows
     o.configOverride->trainEnvHeight = 32;
     train(o, log);
@@ -170,7 +173,8 @@ TEST_F(TrainerTest, PaperModeTrainsWithoutThreeDimensionalGroundTruth) {
         EXPECT_TRUE(std::isfinite(std::stod(cells[2]))) << line;
     }
     EXPECT_EQ(lines, 4);
-    EXPECT_NE(csv.find("\n4,3,"), std::string::npos) << "the last iteration is in stage 3 (adversarial)";
+    EXPECT_NE(csv.find("\n4,3,"), std::string::npos)
+        << "the last iteration is in stage 3 (adversarial)";
     removeOutputs(o);
 }
 

@@ -13,11 +13,11 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -27,7 +27,8 @@ namespace {
 struct ScratchDir {
     fs::path path;
     explicit ScratchDir(const std::string& name)
-        : path(fs::temp_directory_path() / ("lh_training_data_" + std::to_string(::getpid()) + "_" + name)) {
+        : path(fs::temp_directory_path() /
+               ("lh_training_data_" + std::to_string(::getpid()) + "_" + name)) {
         fs::remove_all(path);
         fs::create_directories(path);
     }
@@ -64,7 +65,8 @@ void writeDepthY(const fs::path& path) {
     const int width = 40, height = 30;
     std::vector<half> depth(std::size_t(width) * height);
     for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) depth[std::size_t(y) * width + x] = half(x < 20 ? 2.f : 4.f);
+        for (int x = 0; x < width; ++x)
+            depth[std::size_t(y) * width + x] = half(x < 20 ? 2.f : 4.f);
     const Imath::Box2i window(Imath::V2i(0, 0), Imath::V2i(width - 1, height - 1));
     Imf::Header header(window, window);
     header.channels().insert("Y", Imf::Channel(Imf::HALF));
@@ -92,7 +94,8 @@ fs::path writeExample(const fs::path& root, bool withDepth = true) {
     writeTextFile((dir / "cameras.json").string(), kCamerasJson);
     ImageRGB view(40, 30);
     std::fill(view.pixels.begin(), view.pixels.end(), 0.2f);
-    for (const char* name : {"ref.png", "src.png", "tgt.png"}) writePng(view, (dir / name).string());
+    for (const char* name : {"ref.png", "src.png", "tgt.png"})
+        writePng(view, (dir / name).string());
     writeExr(halves({3.f, 2.f, 1.f}, {0.5f, 0.5f, 0.5f}), (dir / "env_0.exr").string());
     writeExr(halves({1.f, 1.f, 1.f}, {1.f, 1.f, 1.f}), (dir / "env_1.exr").string());
     writeExr(halves({0.5, 0.2, 4.0}, {-1.0, 0.0, 4.0}), (dir / "env_0_pos.exr").string());
@@ -164,7 +167,8 @@ TEST(TrainingData, ReadsTheDevCyclesSetWhereItIsInstalled) {
         EXPECT_GE(ex.envmaps.size(), 1u) << dir;
         for (std::size_t k = 0; k < ex.masks.size(); ++k) {
             const std::vector<std::uint8_t>& mask = ex.masks[k];
-            const double observed = double(std::count(mask.begin(), mask.end(), 1)) / double(mask.size());
+            const double observed =
+                double(std::count(mask.begin(), mask.end(), 1)) / double(mask.size());
             EXPECT_GT(observed, 0.02) << dir << " envmap " << k;
             EXPECT_LT(observed, 0.98) << dir << " envmap " << k;
             const int width = ex.envmaps[k].width, height = ex.envmaps[k].height;

@@ -55,7 +55,8 @@ TEST(Augment, JpegKeepsSmoothContentAndBlursSharpEdges) {
     const auto worstCode = [](const ImageRGB& a, const ImageRGB& b) {
         double worst = 0;
         for (std::size_t i = 0; i < a.pixels.size(); ++i)
-            worst = std::max(worst, std::abs(double(srgbEncode(a.pixels[i]) - srgbEncode(b.pixels[i]))) * 255.0);
+            worst = std::max(
+                worst, std::abs(double(srgbEncode(a.pixels[i]) - srgbEncode(b.pixels[i]))) * 255.0);
         return worst;
     };
     const ImageRGB smooth = jpegRoundTrip(ramp, 90);
@@ -64,7 +65,8 @@ TEST(Augment, JpegKeepsSmoothContentAndBlursSharpEdges) {
     EXPECT_LT(worstCode(smooth, ramp), 6.0);
     const double at90 = worstCode(jpegRoundTrip(checker, 90), checker);
     const double at60 = worstCode(jpegRoundTrip(checker, 60), checker);
-    std::printf("JPEG of the checkerboard: worst %.1f code values at quality 90, %.1f at 60\n", at90, at60);
+    std::printf("JPEG of the checkerboard: worst %.1f code values at quality 90, %.1f at 60\n",
+                at90, at60);
     EXPECT_GT(at60, 20.0);
     EXPECT_GT(at60, at90);
     // augmentPhoto applies it when drawn.
@@ -83,9 +85,11 @@ TEST(Augment, DrawsWithinItsRangesAndNoiseChangesPixels) {
         const Augmentation a = drawAugmentation(rng);
         EXPECT_GE(a.exposure, std::exp(-0.6) - 1e-12);
         EXPECT_LE(a.exposure, std::exp(0.6) + 1e-12);
-        for (double g : a.gain) EXPECT_TRUE(g >= std::exp(-0.12) - 1e-12 && g <= std::exp(0.12) + 1e-12);
+        for (double g : a.gain)
+            EXPECT_TRUE(g >= std::exp(-0.12) - 1e-12 && g <= std::exp(0.12) + 1e-12);
         EXPECT_TRUE(a.noiseSigma >= 0 && a.noiseSigma <= 2.5 / 255.0);
-        EXPECT_TRUE(a.jpegQuality == 0 || (a.jpegQuality >= 60 && a.jpegQuality <= 95)) << a.jpegQuality;
+        EXPECT_TRUE(a.jpegQuality == 0 || (a.jpegQuality >= 60 && a.jpegQuality <= 95))
+            << a.jpegQuality;
         jpegDraws += a.jpegQuality > 0;
     }
     EXPECT_GT(jpegDraws, 60);  // about half of 200
@@ -122,7 +126,8 @@ TEST(OracleTargets, VoxelsBecomeAlphaAndColourAtTheirIndex) {
     const auto cubes = loadOracleCubes(path, layout, torch::Device(torch::kCPU));
     ASSERT_EQ(cubes.size(), 2u);
     EXPECT_EQ(cubes[1].sizes(), (std::vector<int64_t>{1, 4, 32, 32, 32}));
-    EXPECT_NEAR(cubes[1][0][3][8][6][4].item<double>(), 1.0 - std::exp(-2.0), 1e-5);  // [c, z, y, x]
+    EXPECT_NEAR(cubes[1][0][3][8][6][4].item<double>(), 1.0 - std::exp(-2.0),
+                1e-5);  // [c, z, y, x]
     EXPECT_NEAR(cubes[1][0][0][8][6][4].item<double>(), 3.0, 1e-5);
     EXPECT_NEAR(cubes[1][0][2][8][6][4].item<double>(), 0.5, 1e-5);
     EXPECT_NEAR(cubes[1].narrow(1, 3, 1).sum().item<double>(), 1.0 - std::exp(-2.0), 1e-5);
@@ -137,9 +142,12 @@ TEST(OracleTargets, VoxelsBecomeAlphaAndColourAtTheirIndex) {
 
 TEST(OracleTargets, AnotherLayoutIsAClearError) {
     const std::string path = writeOracle(VolumeLayout{8.0, 2, 32});
-    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{10.0, 2, 32}, torch::Device(torch::kCPU)), FileError);
-    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{8.0, 3, 32}, torch::Device(torch::kCPU)), FileError);
-    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{8.0, 2, 48}, torch::Device(torch::kCPU)), FileError);
+    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{10.0, 2, 32}, torch::Device(torch::kCPU)),
+                 FileError);
+    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{8.0, 3, 32}, torch::Device(torch::kCPU)),
+                 FileError);
+    EXPECT_THROW(loadOracleCubes(path, VolumeLayout{8.0, 2, 48}, torch::Device(torch::kCPU)),
+                 FileError);
     std::filesystem::remove(path);
 }
 
@@ -150,7 +158,8 @@ TEST(FastConvolution, AgreesWithLibtorchsConvolutionAndItsGradients) {
     for (const bool threeD : {false, true})
         for (const int64_t batch : {1, 2})
             for (const int64_t odd : {0, 1}) {
-                const auto x = threeD ? torch::randn({batch, 5, 8 + odd, 12, 10 + odd}) : torch::randn({batch, 5, 12 + odd, 10});
+                const auto x = threeD ? torch::randn({batch, 5, 8 + odd, 12, 10 + odd})
+                                      : torch::randn({batch, 5, 12 + odd, 10});
                 const auto w = threeD ? torch::randn({7, 5, 3, 3, 3}) : torch::randn({7, 5, 3, 3});
                 const auto b = torch::randn({7});
                 for (const int64_t stride : {1, 2}) {
@@ -158,15 +167,18 @@ TEST(FastConvolution, AgreesWithLibtorchsConvolutionAndItsGradients) {
                     auto xb = x.clone().requires_grad_(true), wb = w.clone().requires_grad_(true);
                     auto ba = b.clone().requires_grad_(true), bb = b.clone().requires_grad_(true);
                     const auto fast = fastConvolution(xa, wa, ba, stride, 1);
-                    const auto reference =
-                        threeD ? torch::conv3d(xb, wb, bb, stride, 1) : torch::conv2d(xb, wb, bb, stride, 1);
+                    const auto reference = threeD ? torch::conv3d(xb, wb, bb, stride, 1)
+                                                  : torch::conv2d(xb, wb, bb, stride, 1);
                     ASSERT_EQ(fast.sizes(), reference.sizes());
                     EXPECT_LT((fast - reference).abs().max().item<double>(), 1e-4);
                     (fast * fast).sum().backward();
                     (reference * reference).sum().backward();
-                    EXPECT_LT((xa.grad() - xb.grad()).abs().max().item<double>(), 1e-3 * xb.grad().abs().max().item<double>());
-                    EXPECT_LT((wa.grad() - wb.grad()).abs().max().item<double>(), 1e-4 * wb.grad().abs().max().item<double>());
-                    EXPECT_LT((ba.grad() - bb.grad()).abs().max().item<double>(), 1e-4 * bb.grad().abs().max().item<double>());
+                    EXPECT_LT((xa.grad() - xb.grad()).abs().max().item<double>(),
+                              1e-3 * xb.grad().abs().max().item<double>());
+                    EXPECT_LT((wa.grad() - wb.grad()).abs().max().item<double>(),
+                              1e-4 * wb.grad().abs().max().item<double>());
+                    EXPECT_LT((ba.grad() - bb.grad()).abs().max().item<double>(),
+                              1e-4 * bb.grad().abs().max().item<double>());
                 }
             }
 }

@@ -16,7 +16,8 @@ namespace {
 
 double linearRmse(const ImageRGB& a, const ImageRGB& b) {
     double sum = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) sum += std::pow(double(a.pixels[i]) - b.pixels[i], 2);
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        sum += std::pow(double(a.pixels[i]) - b.pixels[i], 2);
     return std::sqrt(sum / a.pixels.size());
 }
 
@@ -33,9 +34,11 @@ MarchOptions cells(int nodes) {
 // the optical depth from s0 to s0 + L is k ((s0 + L)^4 - s0^4) / (12 sqrt 3).
 constexpr double kCubicK = 0.5;
 RenderVolume cubicMedium() {
-    return RenderVolume(test::volumeOf({test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40), [](const Vec3d& p) {
-        return MediumSample{float(kCubicK * (p.x() + 1) * (p.y() + 1) * (p.z() + 1)), openvdb::Vec3s(0.7f, 0.4f, 0.2f)};
-    })}));
+    return RenderVolume(
+        test::volumeOf({test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40), [](const Vec3d& p) {
+            return MediumSample{float(kCubicK * (p.x() + 1) * (p.y() + 1) * (p.z() + 1)),
+                                openvdb::Vec3s(0.7f, 0.4f, 0.2f)};
+        })}));
 }
 
 TEST(CellQuadrature, TwoAndThreeNodesIntegrateACubicDensityExactly) {
@@ -47,7 +50,8 @@ TEST(CellQuadrature, TwoAndThreeNodesIntegrateACubicDensityExactly) {
     const double s0 = 0.025 * std::sqrt(3.0);
     const double length = 1.95 * std::sqrt(3.0);
     const Vec3d dir = Vec3d(-1, -1, -1).unit();
-    const double tauPolynomial = kCubicK * (std::pow(s0 + length, 4) - std::pow(s0, 4)) / (12 * std::sqrt(3.0));
+    const double tauPolynomial =
+        kCubicK * (std::pow(s0 + length, 4) - std::pow(s0, 4)) / (12 * std::sqrt(3.0));
     const double tauHalo = kCubicK * std::pow(0.025, 3) * s0;
     const double expected = std::exp(-(tauPolynomial + tauHalo));  // ~0.04
     double error[4] = {};
@@ -65,9 +69,10 @@ TEST(CellQuadrature, TwoAndThreeNodesIntegrateACubicDensityExactly) {
 
 TEST(CellQuadrature, HomogeneousSlabIsExactForEveryRule) {
     const float sigma = 1.3f;
-    const RenderVolume volume(test::volumeOf({test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40), [=](const Vec3d&) {
-        return MediumSample{sigma, openvdb::Vec3s(0.8f, 0.5f, 0.25f)};
-    })}));
+    const RenderVolume volume(
+        test::volumeOf({test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40), [=](const Vec3d&) {
+            return MediumSample{sigma, openvdb::Vec3s(0.8f, 0.5f, 0.25f)};
+        })}));
     for (int nodes : {1, 2, 3}) {
         for (const Vec3d& dir : {Vec3d(1, 0, 0), Vec3d(1, 0, 1).unit(), Vec3d(1, 2, 3).unit()}) {
             const RayResult r = marchRay(volume, Vec3d(0), dir, cells(nodes));
@@ -84,9 +89,10 @@ TEST(CellQuadrature, HomogeneousSlabIsExactForEveryRule) {
 TEST(CellQuadrature, OpaqueWallGivesItsColourAndHalvingIsBounded) {
     // A wall of 1e6 per unit (optical depth 5e4 per voxel) at x > 0.5: every cell piece that
     // enters it is halved until its parts are thin; the ray must still return the wall colour.
-    const RenderVolume volume(test::volumeOf({test::makeLevel(
-        0.05, Vec3d(-1), openvdb::Coord(40),
-        test::boxField(Vec3d(0.5, -2, -2), Vec3d(2, 2, 2), MediumSample{1e6f, openvdb::Vec3s(0.9f, 0.6f, 0.3f)}))}));
+    const RenderVolume volume(test::volumeOf(
+        {test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40),
+                         test::boxField(Vec3d(0.5, -2, -2), Vec3d(2, 2, 2),
+                                        MediumSample{1e6f, openvdb::Vec3s(0.9f, 0.6f, 0.3f)}))}));
     const RayResult r = marchRay(volume, Vec3d(0, 0.01, 0.02), Vec3d(1, 0, 0), cells(2));
     EXPECT_NEAR(r.radiance[0], 0.9, 1e-3);
     EXPECT_NEAR(r.radiance[2], 0.3, 1e-3);
@@ -124,7 +130,8 @@ TEST(CellQuadrature, DefaultsKeepTheEnvmapErrorBelowAThousandthOfTheMeanRadiance
     double squared = 0, mean = 0;
     for (const Vec3d& at : {Vec3d(0, 0, 2), Vec3d(0.2, 0.1, 0.45), Vec3d(-1, 0.5, 4)}) {
         const ImageRGB reference = renderEnvmap(volume, at, {64, 32, MarchOptions::reference()});
-        squared += std::pow(linearRmse(renderEnvmap(volume, at, {64, 32, MarchOptions{}}), reference), 2);
+        squared +=
+            std::pow(linearRmse(renderEnvmap(volume, at, {64, 32, MarchOptions{}}), reference), 2);
         mean += meanOf(reference);
     }
     EXPECT_LT(std::sqrt(squared / 3) / (mean / 3), 1e-3);
@@ -133,11 +140,13 @@ TEST(CellQuadrature, DefaultsKeepTheEnvmapErrorBelowAThousandthOfTheMeanRadiance
 TEST(RenderVolume, TypicalRadianceIsTheMedianSurfaceColour) {
     // Walls of colour (0.5, 0.2, 0.1) and a small lamp of 100: the lamp does not move the median.
     const auto scene = [](const openvdb::Vec3s& wallColour) {
-        return test::volumeOf({test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20), [=](const Vec3d& p) {
-            if (p.x() > 0.5 && std::abs(p.y()) < 0.15 && std::abs(p.z()) < 0.15) return MediumSample{50.f, openvdb::Vec3s(100.f)};
-            if (p.x() > 0.5 || p.y() < -0.5) return MediumSample{50.f, wallColour};
-            return MediumSample{0.f, openvdb::Vec3s(0.f)};
-        })});
+        return test::volumeOf(
+            {test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20), [=](const Vec3d& p) {
+                if (p.x() > 0.5 && std::abs(p.y()) < 0.15 && std::abs(p.z()) < 0.15)
+                    return MediumSample{50.f, openvdb::Vec3s(100.f)};
+                if (p.x() > 0.5 || p.y() < -0.5) return MediumSample{50.f, wallColour};
+                return MediumSample{0.f, openvdb::Vec3s(0.f)};
+            })});
     };
     EXPECT_NEAR(RenderVolume(scene(openvdb::Vec3s(0.5f, 0.2f, 0.1f))).typicalRadiance(), 0.5, 1e-6);
     // Black walls: the median is 0, and the mean keeps the lamp refined.
@@ -145,9 +154,12 @@ TEST(RenderVolume, TypicalRadianceIsTheMedianSurfaceColour) {
     EXPECT_GT(blackWalls, 0.0);
     EXPECT_LT(blackWalls, 100.0);
     // No density anywhere: nothing to refine.
-    EXPECT_EQ(RenderVolume(test::volumeOf({test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20), [](const Vec3d&) {
-                  return MediumSample{0.f, openvdb::Vec3s(1.f)};
-              })})).typicalRadiance(),
+    EXPECT_EQ(RenderVolume(
+                  test::volumeOf({test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20),
+                                                  [](const Vec3d&) {
+                                                      return MediumSample{0.f, openvdb::Vec3s(1.f)};
+                                                  })}))
+                  .typicalRadiance(),
               0.0);
 }
 
@@ -155,10 +167,12 @@ TEST(RenderVolume, CellBoxHoldsExactlyTheCellsAroundTheDensity) {
     // 14^3 voxels of 0.1 with density in voxel (5, 5, 5) only. Lattice point = voxel + 1
     // (one halo point), so the point is (6, 6, 6) of brick (0, 0, 0), a corner of cells 5 and 6.
     const auto oneVoxel = [](const Vec3d& p) {
-        const bool in = std::abs(p.x() - 0.55) < 0.01 && std::abs(p.y() - 0.55) < 0.01 && std::abs(p.z() - 0.55) < 0.01;
+        const bool in = std::abs(p.x() - 0.55) < 0.01 && std::abs(p.y() - 0.55) < 0.01 &&
+                        std::abs(p.z() - 0.55) < 0.01;
         return MediumSample{in ? 4.f : 0.f, openvdb::Vec3s(1.f)};
     };
-    const RenderVolume volume(test::volumeOf({test::makeLevel(0.1, Vec3d(0), openvdb::Coord(14), oneVoxel)}));
+    const RenderVolume volume(
+        test::volumeOf({test::makeLevel(0.1, Vec3d(0), openvdb::Coord(14), oneVoxel)}));
     const RenderLevel& level = volume.levels[0];
     ASSERT_EQ(volume.storedBricks(), 1u);
     const RenderLevel::CellBox& box = level.cellBox(level.brickIndex(0, 0, 0));
@@ -192,7 +206,8 @@ TEST(RayPartition, NestedFastPathMatchesTheGeneralSubtraction) {
     for (int i = 0; i < 2000; ++i) {
         // Origins inside and outside every level, any direction.
         const double spread = i % 2 ? 1.0 : 20.0;
-        const Vec3d origin(rng.uniform(-spread, spread), rng.uniform(-spread, spread), rng.uniform(-spread, spread) + 2);
+        const Vec3d origin(rng.uniform(-spread, spread), rng.uniform(-spread, spread),
+                           rng.uniform(-spread, spread) + 2);
         Vec3d dir = Vec3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).unit();
         if (i % 5 == 0) dir[i % 3] = 0.0, dir = dir.unit();  // parallel to two faces: 0 x inf
         if (i % 7 == 0) dir = Vec3d(0, 0, 0), dir[i % 3] = i % 2 ? 1.0 : -1.0;  // along an axis
@@ -200,13 +215,19 @@ TEST(RayPartition, NestedFastPathMatchesTheGeneralSubtraction) {
         // index units: where two levels share a face, rounding may leave a piece 1e-15 long
         // in one of them. Such pieces hold no medium worth a sample; they are dropped here.
         const auto withoutSlivers = [](Piece* pieces, int count) {
-            return int(std::remove_if(pieces, pieces + count, [](const Piece& p) { return p.t1 - p.t0 < 1e-12; }) - pieces);
+            return int(std::remove_if(pieces, pieces + count,
+                                      [](const Piece& p) { return p.t1 - p.t0 < 1e-12; }) -
+                       pieces);
         };
         const int n = withoutSlivers(fast, volume.partitionRay(origin, dir, fast));
-        ASSERT_EQ(n, withoutSlivers(general, volume.partitionRayGeneral(origin, dir, general))) << i;
+        ASSERT_EQ(n, withoutSlivers(general, volume.partitionRayGeneral(origin, dir, general)))
+            << i;
         // The three-product direction map of axis-aligned levels is the full matrix's.
         const RenderLevel& finest = volume.levels.back();
-        EXPECT_LT((finest.rayFromIndexOrigin(finest.toIndex(origin), dir).qd - finest.worldToIndex * dir).length(), 1e-12);
+        EXPECT_LT(
+            (finest.rayFromIndexOrigin(finest.toIndex(origin), dir).qd - finest.worldToIndex * dir)
+                .length(),
+            1e-12);
         for (int p = 0; p < n; ++p) {
             EXPECT_EQ(fast[p].level, general[p].level);
             EXPECT_NEAR(fast[p].t0, general[p].t0, 1e-9);
@@ -218,8 +239,9 @@ TEST(RayPartition, NestedFastPathMatchesTheGeneralSubtraction) {
 TEST(RayPartition, OverlappingLevelsAreNotNestedAndFinestStillWins) {
     // Coarse [-4, 2]^3, fine [1, 3]^3: the fine level pokes out of the coarse one.
     const auto medium = [](const Vec3d&) { return MediumSample{1.f, openvdb::Vec3s(1.f)}; };
-    const RenderVolume volume(test::volumeOf({test::makeLevel(0.2, Vec3d(-4), openvdb::Coord(30), medium),
-                                              test::makeLevel(0.1, Vec3d(1), openvdb::Coord(20), medium)}));
+    const RenderVolume volume(
+        test::volumeOf({test::makeLevel(0.2, Vec3d(-4), openvdb::Coord(30), medium),
+                        test::makeLevel(0.1, Vec3d(1), openvdb::Coord(20), medium)}));
     EXPECT_FALSE(volume.nestedLevels());
     Piece pieces[RenderVolume::kMaxPieces];
     // Along +x at y = z = 1.5: coarse from x = -4 (t = 1), fine from x = 1 (t = 6) to 3 (t = 8).

@@ -17,9 +17,9 @@ constexpr int W = 240, H = 120;
 // Dark room-sized level with one opaque emissive block centred on `centre`.
 RenderVolume blockAt(const Vec3d& centre) {
     const openvdb::Vec3s red(1.f, 0.f, 0.f);
-    return RenderVolume(test::volumeOf({test::makeLevel(
-        0.1, Vec3d(-3), openvdb::Coord(60),
-        test::boxField(centre - Vec3d(0.4), centre + Vec3d(0.4), {50.f, red}))}));
+    return RenderVolume(test::volumeOf(
+        {test::makeLevel(0.1, Vec3d(-3), openvdb::Coord(60),
+                         test::boxField(centre - Vec3d(0.4), centre + Vec3d(0.4), {50.f, red}))}));
 }
 
 // Centroid (continuous row, column) of the pixels whose red exceeds 0.5. None of the test
@@ -38,10 +38,10 @@ TEST(Envmap, BlocksAppearAtConventionPixels) {
         double row, column;  // continuous pixel coordinates of the block's direction
     };
     const Case cases[] = {
-        {Vec3d(2, 0, 0), H / 2.0, 3 * W / 4.0},   // +x: right, column 3W/4
-        {Vec3d(-2, 0, 0), H / 2.0, W / 4.0},      // -x: left, column W/4
-        {Vec3d(0, 0, 2), H / 2.0, W / 2.0},       // +z: forward, centre column
-        {Vec3d(0, -2, 0), 0.0, -1.0},             // -y: up, top row (any column)
+        {Vec3d(2, 0, 0), H / 2.0, 3 * W / 4.0},  // +x: right, column 3W/4
+        {Vec3d(-2, 0, 0), H / 2.0, W / 4.0},     // -x: left, column W/4
+        {Vec3d(0, 0, 2), H / 2.0, W / 2.0},      // +z: forward, centre column
+        {Vec3d(0, -2, 0), 0.0, -1.0},            // -y: up, top row (any column)
     };
     for (const Case& c : cases) {
         const ImageRGB env = renderEnvmap(blockAt(c.centre), Vec3d(0), {W, H, MarchOptions{}});
@@ -88,15 +88,18 @@ TEST(Envmap, BackgroundShowsThroughWhatTheVolumeTransmits) {
     // From the centre of a homogeneous cube [-1, 1]^3 (sigma 0.7, colour c), the ray towards +x
     // crosses 1 unit: pixel = c (1 - T) + T b with T = exp(-0.7).
     const openvdb::Vec3s colour(0.2f, 0.4f, 0.6f);
-    const RenderVolume volume(test::volumeOf({test::makeLevel(
-        0.05, Vec3d(-1), openvdb::Coord(40), [&](const Vec3d&) { return MediumSample{0.7f, colour}; })}));
+    const RenderVolume volume(
+        test::volumeOf({test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40), [&](const Vec3d&) {
+            return MediumSample{0.7f, colour};
+        })}));
     EnvmapOptions options{W, H, MarchOptions{}};
     const float background[3] = {1.f, 0.5f, 0.f};
     std::copy(background, background + 3, options.background);
     const ImageRGB env = renderEnvmap(volume, Vec3d(0), options);
     const double t = std::exp(-0.7);
     const float* px = env.at(3 * W / 4, H / 2);  // +x (the pixel centre is 0.75 deg off the axis)
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[c], colour[c] * (1 - t) + t * background[c], 2e-3) << c;
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(px[c], colour[c] * (1 - t) + t * background[c], 2e-3) << c;
     options.background[1] = std::nanf("");
     EXPECT_THROW(renderEnvmap(volume, Vec3d(0), options), InputError);
 }

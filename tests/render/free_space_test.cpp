@@ -21,7 +21,8 @@ LightingVolume shellVolume() {
 
 TEST(FreeSpacePoints, AreEmpty) {
     const RenderVolume prepared(shellVolume());
-    for (const Vec3d& p : freeSpacePoints(prepared, 20, 3)) EXPECT_EQ(prepared.sampleWorld(p).sigma, 0.f);
+    for (const Vec3d& p : freeSpacePoints(prepared, 20, 3))
+        EXPECT_EQ(prepared.sampleWorld(p).sigma, 0.f);
 }
 
 }  // namespace

@@ -102,8 +102,10 @@ TEST(NestedLevels, NoSeamWhereASmoothFieldCrossesALevelBoundary) {
 
     // Rendered: the same field at the coarse level alone gives the same envmap.
     const RenderVolume coarseOnly(test::volumeOf({coarseLevel(linearField)}));
-    const ImageRGB a = renderEnvmap(volume, Vec3d(0.9, 0, 0), {64, 32, MarchOptions{0.25, 0.0, true}});
-    const ImageRGB b = renderEnvmap(coarseOnly, Vec3d(0.9, 0, 0), {64, 32, MarchOptions{0.25, 0.0, true}});
+    const ImageRGB a =
+        renderEnvmap(volume, Vec3d(0.9, 0, 0), {64, 32, MarchOptions{0.25, 0.0, true}});
+    const ImageRGB b =
+        renderEnvmap(coarseOnly, Vec3d(0.9, 0, 0), {64, 32, MarchOptions{0.25, 0.0, true}});
     for (std::size_t i = 0; i < a.pixels.size(); ++i)
         EXPECT_NEAR(a.pixels[i], b.pixels[i], 2e-3 * std::abs(b.pixels[i]) + 1e-6);
 }

@@ -12,8 +12,9 @@ namespace {
 
 // A homogeneous cube [-1, 1]^3 of 0.05 voxels: sigma and colour everywhere inside.
 LightingVolume homogeneousCube(float sigma, openvdb::Vec3s color) {
-    return test::volumeOf({test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40),
-                                           [=](const Vec3d&) { return MediumSample{sigma, color}; })});
+    return test::volumeOf({test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40), [=](const Vec3d&) {
+        return MediumSample{sigma, color};
+    })});
 }
 
 void expectSlab(const RenderVolume& volume, const Vec3d& origin, const Vec3d& dir, double length,
@@ -66,7 +67,8 @@ TEST(RayMarcher, EarlyTerminationErrorIsBoundedByThreshold) {
     const RenderVolume volume(homogeneousCube(sigma, color));
     const double exact = 1.0 - std::exp(-sigma * 1.0);
     for (double threshold : {1e-2, 1e-4}) {
-        const RayResult r = marchRay(volume, Vec3d(0), Vec3d(1, 0, 0), MarchOptions{0.5, threshold, true});
+        const RayResult r =
+            marchRay(volume, Vec3d(0), Vec3d(1, 0, 0), MarchOptions{0.5, threshold, true});
         EXPECT_LE(std::abs(r.radiance[0] - exact), threshold);
         EXPECT_LT(r.transmittance, threshold);
     }

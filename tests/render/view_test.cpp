@@ -17,7 +17,8 @@ TEST(View, WallFillsTheFrameAndBlockSitsOnTheRightSide) {
         if (p.z() > 3.0 && p.z() < 3.5) return MediumSample{60.f, openvdb::Vec3s(0.5f)};
         return MediumSample{};
     };
-    const RenderVolume volume(test::volumeOf({test::makeLevel(0.05, Vec3d(-4, -4, 0), openvdb::Coord(160, 160, 80), field)}));
+    const RenderVolume volume(test::volumeOf(
+        {test::makeLevel(0.05, Vec3d(-4, -4, 0), openvdb::Coord(160, 160, 80), field)}));
     PinholeCamera cam = exampleCameras().ref;
     const ImageRGB img = renderView(volume, cam);
     // Top-left corner: the wall at 0.5 radiance.

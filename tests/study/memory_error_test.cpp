@@ -19,17 +19,24 @@ TEST(MemoryTarget, JudgesTheDefaultBoundsRow) {
     atDefault.psnrGroundTruth = 19.95, atDefault.lossDb = 0.05;
     const std::vector<MemoryErrorRow> rows{unpruned, atDefault, looser};
     std::string md = memoryTargetMarkdown(rows, 1e6, 1e-4);
-    EXPECT_NE(md.find("on disk (Blosc, half precision): 0.05 MB, 5.0% of dense: **met**"), std::string::npos) << md;
-    EXPECT_NE(md.find("in memory (OpenVDB grids): 0.3 MB, 30.0% of dense: **not met**"), std::string::npos) << md;
+    EXPECT_NE(md.find("on disk (Blosc, half precision): 0.05 MB, 5.0% of dense: **met**"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("in memory (OpenVDB grids): 0.3 MB, 30.0% of dense: **not met**"),
+              std::string::npos)
+        << md;
     EXPECT_NE(md.find("0.050 dB lost: **met**"), std::string::npos) << md;
     // Losing more than 0.1 dB fails the target; without ground truth it is not judged.
     std::vector<MemoryErrorRow> lossy = rows;
     lossy[1].lossDb = 0.2;
-    EXPECT_NE(memoryTargetMarkdown(lossy, 1e6, 1e-4).find("0.200 dB lost: **not met**"), std::string::npos);
+    EXPECT_NE(memoryTargetMarkdown(lossy, 1e6, 1e-4).find("0.200 dB lost: **not met**"),
+              std::string::npos);
     lossy[1].psnrGroundTruth = -1;
-    EXPECT_NE(memoryTargetMarkdown(lossy, 1e6, 1e-4).find("not measured without ground truth"), std::string::npos);
+    EXPECT_NE(memoryTargetMarkdown(lossy, 1e6, 1e-4).find("not measured without ground truth"),
+              std::string::npos);
     // A run without a row at the bound says so.
-    EXPECT_NE(memoryTargetMarkdown(rows, 1e6, 1e-3).find("not measured: this run has no row at that bound"),
+    EXPECT_NE(memoryTargetMarkdown(rows, 1e6, 1e-3)
+                  .find("not measured: this run has no row at that bound"),
               std::string::npos);
 }
 

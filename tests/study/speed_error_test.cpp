@@ -27,7 +27,8 @@ TEST(SpeedError, RoundsKeepEachRowsOwnErrorAndTime) {
     };
     std::set<std::string> settings;
     for (const SpeedErrorRow& r : rows) {
-        EXPECT_TRUE(settings.insert(r.setting).second) << "row '" << r.setting << "' measured twice";
+        EXPECT_TRUE(settings.insert(r.setting).second)
+            << "row '" << r.setting << "' measured twice";
         EXPECT_TRUE(std::isfinite(r.msPerEnvmap) && r.msPerEnvmap > 0.0) << r.setting;
         EXPECT_TRUE(std::isfinite(r.relativeRmse) && r.relativeRmse >= 0.0) << r.setting;
     }

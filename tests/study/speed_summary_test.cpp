@@ -11,19 +11,20 @@ std::vector<SpeedErrorRow> knownRun() {
     return {
         {"reference-check", "step 0.025, tau<0.01", 2000.0, 1e-5, 99},  // not ours: never chosen
         {"ours-cells", "1 Gauss node/cell, bound 8, T<0.0001", 5.0, 2e-2, 52},
-        {"ours-cells", "2 Gauss nodes/cell, bound 1, T<0.0001", 10.0, 5e-4, 75},   // the default
+        {"ours-cells", "2 Gauss nodes/cell, bound 1, T<0.0001", 10.0, 5e-4, 75},  // the default
         {"ours-cells", "2 Gauss nodes/cell, bound 3, T<0.0001", 8.0, 9e-4, 72},
         {"ours-steps", "step 0.5, T<0.0001, tau<0.5", 20.0, 2e-3, 57},
         {"paper-spheres", "32 spheres/level", 30.0, 5e-1, 33},
         {"paper-spheres", "128 spheres/level", 100.0, 4e-2, 51},
-        {"paper-spheres", "512 spheres/level", 400.0, 1e-5, 90},         // better than all of ours
+        {"paper-spheres", "512 spheres/level", 400.0, 1e-5, 90},  // better than all of ours
     };
 }
 
 TEST(SpeedSummary, FindsTheFastestWithinTheBoundAndTheDefault) {
     const SpeedSummary s = summarizeSpeedAgainstError(knownRun());
     ASSERT_TRUE(s.fastestWithinBound);
-    EXPECT_EQ(s.fastestWithinBound->setting, "2 Gauss nodes/cell, bound 3, T<0.0001");  // 8 ms, 9e-4
+    EXPECT_EQ(s.fastestWithinBound->setting,
+              "2 Gauss nodes/cell, bound 3, T<0.0001");  // 8 ms, 9e-4
     ASSERT_TRUE(s.defaultSetting);
     EXPECT_EQ(s.defaultSetting->msPerEnvmap, 10.0);
     // A tighter bound than any of ours reaches: none.
@@ -46,9 +47,15 @@ TEST(SpeedSummary, ComparesEachPaperSettingWithOurFastestAtEqualOrLowerError) {
 
 TEST(SpeedSummary, MarkdownStatesTheAnswers) {
     const std::string md = speedSummaryMarkdown(summarizeSpeedAgainstError(knownRun()));
-    EXPECT_NE(md.find("ours-cells, 2 Gauss nodes/cell, bound 3, T<0.0001: 8 ms (125 envmaps/s) at 9.00e-04"), std::string::npos) << md;
-    EXPECT_NE(md.find("| 128 spheres/level | 100 | 4.00e-02 | ours-cells, 1 Gauss node/cell, bound 8, T<0.0001 | 5 | 2.00e-02 | 20.0 |"),
-              std::string::npos) << md;
+    EXPECT_NE(
+        md.find(
+            "ours-cells, 2 Gauss nodes/cell, bound 3, T<0.0001: 8 ms (125 envmaps/s) at 9.00e-04"),
+        std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| 128 spheres/level | 100 | 4.00e-02 | ours-cells, 1 Gauss node/cell, bound "
+                      "8, T<0.0001 | 5 | 2.00e-02 | 20.0 |"),
+              std::string::npos)
+        << md;
     EXPECT_NE(md.find("| 512 spheres/level | 400 | 1.00e-05 | none |"), std::string::npos) << md;
 }
 
@@ -61,9 +68,13 @@ TEST(SpeedSummary, ReadsTheTargetsFromTheRows) {
     EXPECT_EQ(s.againstPaperSetting->theirs.setting, "128 spheres/level");
     EXPECT_TRUE(s.speedupMet);
     std::string md = speedSummaryMarkdown(s);
-    EXPECT_NE(md.find("* >= 100 envmaps/s within RMSE 1e-03: **met** (125/s)"), std::string::npos) << md;
-    EXPECT_NE(md.find("faster than the paper's 128 spheres/level at equal or lower error: **met** (20.0x)"),
-              std::string::npos) << md;
+    EXPECT_NE(md.find("* >= 100 envmaps/s within RMSE 1e-03: **met** (125/s)"), std::string::npos)
+        << md;
+    EXPECT_NE(
+        md.find(
+            "faster than the paper's 128 spheres/level at equal or lower error: **met** (20.0x)"),
+        std::string::npos)
+        << md;
     // Slower by a little: 12.5 ms at best within 1e-3 (80/s), and 128 spheres only 19x our
     // 1-node row.
     rows[2].msPerEnvmap = 13.0;
@@ -85,7 +96,9 @@ TEST(SpeedSummary, ReadsTheTargetsFromTheRows) {
     EXPECT_EQ(md.find("met**"), std::string::npos) << md;
     // A run without the paper's setting says so instead of guessing.
     rows.erase(rows.begin() + 6);
-    EXPECT_NE(speedSummaryMarkdown(summarizeSpeedAgainstError(rows)).find("not measured in this run"), std::string::npos);
+    EXPECT_NE(
+        speedSummaryMarkdown(summarizeSpeedAgainstError(rows)).find("not measured in this run"),
+        std::string::npos);
 }
 
 }  // namespace

@@ -19,12 +19,12 @@
 namespace lh::test {
 
 struct ExifTags {
-    std::optional<int> focal35mm;      // SHORT
-    std::optional<double> focalMm;     // RATIONAL (x1000)
-    std::optional<double> planeXRes;   // RATIONAL, per unit
-    std::optional<int> planeUnit;      // SHORT: 2 inch, 3 cm
+    std::optional<int> focal35mm;     // SHORT
+    std::optional<double> focalMm;    // RATIONAL (x1000)
+    std::optional<double> planeXRes;  // RATIONAL, per unit
+    std::optional<int> planeUnit;     // SHORT: 2 inch, 3 cm
     std::optional<int> pixelXDimension;
-    std::optional<int> orientation;    // SHORT, IFD 0
+    std::optional<int> orientation;  // SHORT, IFD 0
 };
 
 inline void setNumber(ExifData* d, ExifIfd ifd, ExifTag tag, double value) {
@@ -33,12 +33,18 @@ inline void setNumber(ExifData* d, ExifIfd ifd, ExifTag tag, double value) {
     exif_entry_initialize(e, tag);
     const ExifByteOrder order = exif_data_get_byte_order(d);
     switch (e->format) {
-    case EXIF_FORMAT_SHORT: exif_set_short(e->data, order, ExifShort(value)); break;
-    case EXIF_FORMAT_LONG: exif_set_long(e->data, order, ExifLong(value)); break;
-    case EXIF_FORMAT_RATIONAL:
-        exif_set_rational(e->data, order, ExifRational{ExifLong(std::lround(value * 1000)), 1000});
-        break;
-    default: ADD_FAILURE() << "unexpected EXIF format for tag " << tag;
+        case EXIF_FORMAT_SHORT:
+            exif_set_short(e->data, order, ExifShort(value));
+            break;
+        case EXIF_FORMAT_LONG:
+            exif_set_long(e->data, order, ExifLong(value));
+            break;
+        case EXIF_FORMAT_RATIONAL:
+            exif_set_rational(e->data, order,
+                              ExifRational{ExifLong(std::lround(value * 1000)), 1000});
+            break;
+        default:
+            ADD_FAILURE() << "unexpected EXIF format for tag " << tag;
     }
     exif_entry_unref(e);
 }
@@ -50,8 +56,10 @@ inline std::vector<unsigned char> exifBlock(const ExifTags& t) {
     if (t.focal35mm) setNumber(d, EXIF_IFD_EXIF, EXIF_TAG_FOCAL_LENGTH_IN_35MM_FILM, *t.focal35mm);
     if (t.focalMm) setNumber(d, EXIF_IFD_EXIF, EXIF_TAG_FOCAL_LENGTH, *t.focalMm);
     if (t.planeXRes) setNumber(d, EXIF_IFD_EXIF, EXIF_TAG_FOCAL_PLANE_X_RESOLUTION, *t.planeXRes);
-    if (t.planeUnit) setNumber(d, EXIF_IFD_EXIF, EXIF_TAG_FOCAL_PLANE_RESOLUTION_UNIT, *t.planeUnit);
-    if (t.pixelXDimension) setNumber(d, EXIF_IFD_EXIF, EXIF_TAG_PIXEL_X_DIMENSION, *t.pixelXDimension);
+    if (t.planeUnit)
+        setNumber(d, EXIF_IFD_EXIF, EXIF_TAG_FOCAL_PLANE_RESOLUTION_UNIT, *t.planeUnit);
+    if (t.pixelXDimension)
+        setNumber(d, EXIF_IFD_EXIF, EXIF_TAG_PIXEL_X_DIMENSION, *t.pixelXDimension);
     unsigned char* buf = nullptr;
     unsigned int size = 0;
     exif_data_save_data(d, &buf, &size);  // starts with "Exif\0\0", then the TIFF structure
@@ -63,16 +71,18 @@ inline std::vector<unsigned char> exifBlock(const ExifTags& t) {
 
 inline void appendBytes(void* context, void* data, int size) {
     auto* out = static_cast<std::vector<unsigned char>*>(context);
-    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+    out->insert(out->end(), static_cast<unsigned char*>(data),
+                static_cast<unsigned char*>(data) + size);
 }
 
 // A width x height JPEG of `rgb` (8-bit, interleaved; a gradient when empty), carrying `tags`
 // (no EXIF at all when nullopt).
-inline std::string makeJpeg(const std::string& name, int width, int height, std::optional<ExifTags> tags,
-                            std::vector<unsigned char> rgb = {}) {
+inline std::string makeJpeg(const std::string& name, int width, int height,
+                            std::optional<ExifTags> tags, std::vector<unsigned char> rgb = {}) {
     if (rgb.empty()) {
         rgb.resize(std::size_t(width) * height * 3);
-        for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<unsigned char>(i * 7 % 251);
+        for (std::size_t i = 0; i < rgb.size(); ++i)
+            rgb[i] = static_cast<unsigned char>(i * 7 % 251);
     }
     std::vector<unsigned char> jpeg;
     EXPECT_TRUE(stbi_write_jpg_to_func(appendBytes, &jpeg, width, height, 3, rgb.data(), 90));
@@ -85,8 +95,8 @@ inline std::string makeJpeg(const std::string& name, int width, int height, std:
         jpeg.insert(jpeg.begin() + 2, app1.begin(), app1.end());  // after SOI (FF D8)
     }
     const std::string path = test::uniqueTempPath(name);
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()),
-                                                std::streamsize(jpeg.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(jpeg.data()), std::streamsize(jpeg.size()));
     return path;
 }
 

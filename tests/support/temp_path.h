@@ -10,7 +10,8 @@
 namespace lh::test {
 
 inline std::string uniqueTempPath(const std::string& name) {
-    return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
+    return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name))
+        .string();
 }
 
 }  // namespace lh::test

@@ -36,8 +36,8 @@ inline LightingVolume volumeOf(std::vector<VolumeLevel> levels) {
 inline std::function<MediumSample(const Vec3d&)> boxField(const Vec3d& lo, const Vec3d& hi,
                                                           MediumSample inside) {
     return [=](const Vec3d& p) {
-        const bool in = p.x() >= lo.x() && p.x() <= hi.x() && p.y() >= lo.y() &&
-                        p.y() <= hi.y() && p.z() >= lo.z() && p.z() <= hi.z();
+        const bool in = p.x() >= lo.x() && p.x() <= hi.x() && p.y() >= lo.y() && p.y() <= hi.y() &&
+                        p.z() >= lo.z() && p.z() <= hi.z();
         return in ? inside : MediumSample{};
     };
 }

@@ -65,7 +65,8 @@ TEST(SynthDataset, StereoPairSatisfiesEpipolarGeometry) {
             // The 3D point seen at (x, y) in ref projects into src on the same row, shifted
             // by the disparity fx * baseline / depth.
             const double z = depth.at(x, y)[0];
-            const Vec3d world = cams.ref.pixelDirection(x + 0.5, y + 0.5) * (z / cams.ref.pixelDirection(x + 0.5, y + 0.5).z());
+            const Vec3d world = cams.ref.pixelDirection(x + 0.5, y + 0.5) *
+                                (z / cams.ref.pixelDirection(x + 0.5, y + 0.5).z());
             const Vec3d inSrc = cams.src->cameraToPixel(cams.src->worldToCamera(world));
             ASSERT_NEAR(inSrc.y(), y + 0.5, 1e-6);
             ASSERT_NEAR((x + 0.5) - inSrc.x(), cams.ref.fx * baseline / z, 1e-6);
@@ -95,14 +96,18 @@ TEST(SynthDataset, PngClipsAtOneWhereTheExrShowsAVisibleLamp) {
     for (uint64_t index = 0; index < 8 && !sawEmitter; ++index) {
         const fs::path x = dir / std::to_string(index);
         writeExample(exampleSeed("train", index), x.string(), o, panoramas);
-        const ImageRGB exr = readImage((x / "ref.exr").string()), png = readImage((x / "ref.png").string());
+        const ImageRGB exr = readImage((x / "ref.exr").string()),
+                       png = readImage((x / "ref.png").string());
         ASSERT_EQ(exr.pixels.size(), png.pixels.size());
         std::size_t brightest = 0;
         for (std::size_t i = 0; i < exr.pixels.size(); ++i) {
             const float v = exr.pixels[i];
             if (v > exr.pixels[brightest]) brightest = i;
-            if (v >= 1.f) ASSERT_EQ(png.pixels[i], 1.f) << i;
-            else ASSERT_NEAR(srgbEncode(png.pixels[i]), srgbEncode(std::max(v, 0.f)), 0.51 / 255) << i;
+            if (v >= 1.f)
+                ASSERT_EQ(png.pixels[i], 1.f) << i;
+            else
+                ASSERT_NEAR(srgbEncode(png.pixels[i]), srgbEncode(std::max(v, 0.f)), 0.51 / 255)
+                    << i;
         }
         if (exr.pixels[brightest] < 2.f) continue;
         // The brightest pixel shows an emitter: a lamp, a panel or a window.
@@ -118,7 +123,9 @@ TEST(SynthDataset, PngClipsAtOneWhereTheExrShowsAVisibleLamp) {
         const RadianceField field(scene, tracer, panoramas, cheap);
         for (int dy = -1; dy <= 1; ++dy)  // the emitter may cover only part of the pixel
             for (int dx = -1; dx <= 1; ++dx) {
-                const RayHit hit = tracer.intersect(cams.ref.position, cams.ref.pixelDirection(px + 0.5 + 0.5 * dx, py + 0.5 + 0.5 * dy), 0.0);
+                const RayHit hit = tracer.intersect(
+                    cams.ref.position,
+                    cams.ref.pixelDirection(px + 0.5 + 0.5 * dx, py + 0.5 + 0.5 * dy), 0.0);
                 sawEmitter |= hit.hit && field.isEmitting(hit.point);
             }
     }

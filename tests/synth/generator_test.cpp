@@ -19,7 +19,8 @@ int countLabel(const Scene& s, const std::string& label) {
 }
 
 TEST(SceneGenerator, RoomsCameraAndContentsStayInTheirRangesOver60Seeds) {
-    int glossy = 0, metal = 0, bricks = 0, bandsOrRings = 0, lamps = 0, panels = 0, panelWindows = 0;
+    int glossy = 0, metal = 0, bricks = 0, bandsOrRings = 0, lamps = 0, panels = 0,
+        panelWindows = 0;
     for (uint64_t seed = 0; seed < 60; ++seed) {
         const GeneratedScene g = generateScene(seed, kPanoramas, 128, 96);
         const Scene& s = g.scene;
@@ -53,7 +54,8 @@ TEST(SceneGenerator, RoomsCameraAndContentsStayInTheirRangesOver60Seeds) {
         EXPECT_LE(lights, 3) << seed;
         EXPECT_GE(countLabel(s, "window"), 1) << seed;
         EXPECT_LE(countLabel(s, "window"), 3) << seed;
-        const int furniture = countLabel(s, "box") + countLabel(s, "cylinder") + countLabel(s, "sphere");
+        const int furniture =
+            countLabel(s, "box") + countLabel(s, "cylinder") + countLabel(s, "sphere");
         EXPECT_GE(furniture, 3) << seed;
         EXPECT_LE(furniture, 10) << seed;
         lamps += countLabel(s, "lamp");

@@ -41,12 +41,14 @@ TEST(LightTransport, FurnaceRoomIsUniformAndLitSphereShinesAlbedoTimesL) {
     const RayTracer tracer(s);
     const RadianceField field(s, tracer, panoramas());
 
-    const SceneEnvmap env = renderSceneEnvmap(tracer, field, Vec3d(0.5, 0.3, -1.0), 120, 60, PinholeCamera{}, 1);
+    const SceneEnvmap env =
+        renderSceneEnvmap(tracer, field, Vec3d(0.5, 0.3, -1.0), 120, 60, PinholeCamera{}, 1);
     double sphereSum = 0;
     int spherePixels = 0;
     for (int y = 0; y < 60; ++y)
         for (int x = 0; x < 120; ++x) {
-            const Vec3d hit(env.hitPositions.at(x, y)[0], env.hitPositions.at(x, y)[1], env.hitPositions.at(x, y)[2]);
+            const Vec3d hit(env.hitPositions.at(x, y)[0], env.hitPositions.at(x, y)[1],
+                            env.hitPositions.at(x, y)[2]);
             const float* p = env.radiance.at(x, y);
             if ((hit - ball.centre).length() < 0.51) {
                 // Per pixel: sampling noise of 6 x 16 light samples per texel, bound 15%.
@@ -87,7 +89,8 @@ TEST(LightTransport, PanelAppearsAtItsEnvmapPixels) {
     const int W = 240, H = 120;
     const SceneEnvmap env = renderSceneEnvmap(tracer, field, Vec3d(0.0), W, H, PinholeCamera{}, 1);
     // The panel spans +-9.5 degrees around +z (column W/2, row H/2): +-6 pixels.
-    for (int dc = -4; dc <= 4; ++dc) EXPECT_FLOAT_EQ(env.radiance.at(W / 2 + dc, H / 2)[0], 5.f) << dc;
+    for (int dc = -4; dc <= 4; ++dc)
+        EXPECT_FLOAT_EQ(env.radiance.at(W / 2 + dc, H / 2)[0], 5.f) << dc;
     EXPECT_FLOAT_EQ(env.radiance.at(W / 2 + 12, H / 2)[0], 0.f);
     EXPECT_FLOAT_EQ(env.radiance.at(W / 2, H / 2 + 12)[0], 0.f);
     EXPECT_FLOAT_EQ(env.radiance.at(0, H / 2)[0], 0.f);  // behind: a black wall

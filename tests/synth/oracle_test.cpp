@@ -30,7 +30,8 @@ TEST(SynthOracle, UniformRoomIsReproducedAlmostExactly) {
     PanoramaLibrary panoramas(LIGHTHOUSE_HDRI_DIR);
     const RadianceField field(s, tracer, panoramas);
     const LightingVolume volume = oracleVolume(s, field, VolumeLayout::fromFarDepth(3.5, 5, 32));
-    const ImageRGB env = renderEnvmap(RenderVolume(volume), Vec3d(0.3, 0.2, 1.0), {120, 60, MarchOptions{}});
+    const ImageRGB env =
+        renderEnvmap(RenderVolume(volume), Vec3d(0.3, 0.2, 1.0), {120, 60, MarchOptions{}});
     ImageRGB truth(120, 60);
     for (std::size_t i = 0; i < truth.pixels.size(); ++i) truth.pixels[i] = float(L[i % 3]);
     EXPECT_GT(psnr(env, truth), 40.0);
@@ -55,7 +56,8 @@ TEST(SynthOracle, GeneratedRoomReachesTheCeilingThreshold) {
     const RayTracer tracer(scene);
     const RadianceField field(scene, tracer, panoramas, bake);
     const LightingVolume volume = oracleVolume(scene, field, VolumeLayout::fromFarDepth(*cams.far));
-    const ImageRGB env = renderEnvmap(RenderVolume(volume), cams.envmaps[0].position, {120, 60, MarchOptions{}});
+    const ImageRGB env =
+        renderEnvmap(RenderVolume(volume), cams.envmaps[0].position, {120, 60, MarchOptions{}});
     const ImageRGB truth = readImage((dir / "x" / "env_0.exr").string());
     EXPECT_GT(psnr(env, truth), 22.0);
     EXPECT_LT(angularErrorDegrees(env, truth), 10.0);

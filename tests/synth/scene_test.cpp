@@ -22,15 +22,17 @@ Primitive shape(Shape s, const Vec3d& half) {
 }
 
 TEST(SynthScene, SurfaceParameterisationRoundTrips) {
-    for (const Primitive& p : {shape(Shape::Box, Vec3d(0.5, 0.3, 0.2)), shape(Shape::Sphere, Vec3d(0.4)),
-                               shape(Shape::Cylinder, Vec3d(0.3, 0.5, 0))}) {
+    for (const Primitive& p :
+         {shape(Shape::Box, Vec3d(0.5, 0.3, 0.2)), shape(Shape::Sphere, Vec3d(0.4)),
+          shape(Shape::Cylinder, Vec3d(0.3, 0.5, 0))}) {
         Random rng(3);
         for (int f = 0; f < faceCount(p); ++f)
             for (int i = 0; i < 20; ++i) {
                 const FaceRange r = faceRange(p, f);
                 const double u = rng.uniform(r.u0, r.u1), v = rng.uniform(r.v0, r.v1);
                 // Cylinder caps: stay inside the disc, away from the rim where faces meet.
-                if (p.shape == Shape::Cylinder && f > 0 && std::hypot(u, v) > 0.9 * p.half.x()) continue;
+                if (p.shape == Shape::Cylinder && f > 0 && std::hypot(u, v) > 0.9 * p.half.x())
+                    continue;
                 const SurfacePoint a = surfaceAt(p, 0, f, u, v);
                 // On the surface, with the outward normal, and found again by projection.
                 EXPECT_NEAR(signedDistance(p, a.position), 0.0, 1e-9);
@@ -43,7 +45,7 @@ TEST(SynthScene, SurfaceParameterisationRoundTrips) {
 
 TEST(SynthScene, RoomIsSolidOutsideAndFreeInside) {
     const Scene s = test::blackRoom();
-    EXPECT_NEAR(s.distanceToSolid(Vec3d(0, 0, 0)), 1.5, 1e-12);   // nearest: floor/ceiling
+    EXPECT_NEAR(s.distanceToSolid(Vec3d(0, 0, 0)), 1.5, 1e-12);     // nearest: floor/ceiling
     EXPECT_NEAR(s.distanceToSolid(Vec3d(0, 0, 3.2)), -0.2, 1e-12);  // behind the back wall
     EXPECT_EQ(s.solidAt(Vec3d(0, 0, 0)), -1);
     EXPECT_EQ(s.solidAt(Vec3d(2.5, 0, 0)), 0);
@@ -62,7 +64,9 @@ TEST(SynthTexture, BrickShowsMortarOnItsJointsAndBrickInItsCentres) {
     t.scale = 0.4;
     t.noiseSeed = 9;
     const double shift = 0.37;
-    const auto local = [&](double qAlong, double qRow) { return (Vec3d(qAlong, qRow, 0.0) - Vec3d(shift)) * t.scale; };
+    const auto local = [&](double qAlong, double qRow) {
+        return (Vec3d(qAlong, qRow, 0.0) - Vec3d(shift)) * t.scale;
+    };
     const Vec3d wallNormal(0, 0, 1);  // a vertical face: rows across y, bricks along x
     const auto isBrick = [&](const Vec3d& a) {
         for (int c = 0; c < 3; ++c)
@@ -78,18 +82,22 @@ TEST(SynthTexture, BrickShowsMortarOnItsJointsAndBrickInItsCentres) {
             const Vec3d head = local(column - offset + 0.3 * kMortarWidth, rowCentre);
             EXPECT_EQ(t.albedo(head, wallNormal), t.colorB) << row << "," << column;
             // Brick centre: the brick's colour, darkened by at most 20%.
-            EXPECT_TRUE(isBrick(t.albedo(local(column - offset + 0.5, rowCentre), wallNormal))) << row << "," << column;
+            EXPECT_TRUE(isBrick(t.albedo(local(column - offset + 0.5, rowCentre), wallNormal)))
+                << row << "," << column;
             // Running bond: the row above has a brick centre over this row's head joint.
-            EXPECT_TRUE(isBrick(t.albedo(local(column - offset, rowCentre + kBrickRowHeight), wallNormal)));
+            EXPECT_TRUE(
+                isBrick(t.albedo(local(column - offset, rowCentre + kBrickRowHeight), wallNormal)));
             // Just inside the mortar's edge is brick.
-            EXPECT_TRUE(isBrick(t.albedo(local(column - offset + 0.6 * kMortarWidth, rowCentre), wallNormal)));
+            EXPECT_TRUE(isBrick(
+                t.albedo(local(column - offset + 0.6 * kMortarWidth, rowCentre), wallNormal)));
         }
     }
     // A floor (normal along y) lays its rows across z: a joint at constant z is mortar for
     // every x, whatever the floor's height.
     for (double x : {-0.31, 0.05, 0.77})
         for (double y : {0.0, 0.123})
-            EXPECT_EQ(t.albedo(Vec3d(x, y, (kBrickRowHeight - shift) * t.scale), Vec3d(0, -1, 0)), t.colorB);
+            EXPECT_EQ(t.albedo(Vec3d(x, y, (kBrickRowHeight - shift) * t.scale), Vec3d(0, -1, 0)),
+                      t.colorB);
 }
 
 TEST(SynthTexture, BandsAndRingsSpanTheirTwoColours) {
@@ -109,7 +117,9 @@ TEST(SynthTexture, BandsAndRingsSpanTheirTwoColours) {
     const Vec3d p(0.1, 0.2, 0.3);
     EXPECT_NEAR(t.albedo(p, n).x(), t.albedo(p + Vec3d(0.2, -0.1, -0.1), n).x(), 1e-12);
     EXPECT_NEAR(t.albedo(p, n).x(), t.albedo(p + Vec3d(1, 1, 1).unit() * t.scale, n).x(), 1e-12);
-    EXPECT_GT(std::abs(t.albedo(p, n).x() - t.albedo(p + Vec3d(1, 1, 1).unit() * (0.5 * t.scale), n).x()), 0.1);
+    EXPECT_GT(
+        std::abs(t.albedo(p, n).x() - t.albedo(p + Vec3d(1, 1, 1).unit() * (0.5 * t.scale), n).x()),
+        0.1);
 }
 
 TEST(SynthScene, JsonRoundTripIsExact) {

@@ -71,7 +71,8 @@ PinholeCamera camera(double x) {
 }
 
 // First t > 0 where origin + t dir meets the sphere, if it does.
-std::optional<double> hitSphere(const Vec3d& origin, const Vec3d& dir, const Vec3d& centre, double radius) {
+std::optional<double> hitSphere(const Vec3d& origin, const Vec3d& dir, const Vec3d& centre,
+                                double radius) {
     const Vec3d o = origin - centre;
     const double b = o.dot(dir), c = o.lengthSqr() - radius * radius, disc = b * b - c;
     if (disc < 0) return std::nullopt;
@@ -144,12 +145,14 @@ TEST(Specular, MirrorSphereShowsTheReflectionOfItsOwnViewAndDiffuseOneMatches) {
             if (!e) continue;
             // Known answer: F(theta) times the radiance of the cell the mirror ray meets.
             for (int c = 0; c < 3; ++c)
-                ASSERT_NEAR(refImage.at(x, y)[c], e->radiance[c], 0.01 * e->radiance[c] + 1e-5) << x << "," << y;
+                ASSERT_NEAR(refImage.at(x, y)[c], e->radiance[c], 0.01 * e->radiance[c] + 1e-5)
+                    << x << "," << y;
             const auto [sx, sy] = pixelOf(src, e->point);
             const auto es = expectedMirrorPixel(src, sx, sy);
             if (!es || (es->point - e->point).length() > 0.01) continue;
             for (int c = 0; c < 3; ++c)
-                ASSERT_NEAR(srcImage.at(sx, sy)[c], es->radiance[c], 0.01 * es->radiance[c] + 1e-5) << sx << "," << sy;
+                ASSERT_NEAR(srcImage.at(sx, sy)[c], es->radiance[c], 0.01 * es->radiance[c] + 1e-5)
+                    << sx << "," << sy;
             ++checked;
             // The same point of the mirror, seen from 15 cm further right, reflects another cell.
             differing += std::abs(refImage.at(x, y)[0] - srcImage.at(sx, sy)[0]) > 0.5;
@@ -164,12 +167,17 @@ TEST(Specular, MirrorSphereShowsTheReflectionOfItsOwnViewAndDiffuseOneMatches) {
         for (int x = 0; x < ref.width; ++x) {
             const Vec3d d = ref.pixelDirection(x + 0.5, y + 0.5);
             const RayHit h = tracer.intersect(ref.position, d, 0.0);
-            if (!h.hit || h.point.primitive != int(s.primitives.size()) - 1 || -d.dot(h.point.normal) < 0.5) continue;
+            if (!h.hit || h.point.primitive != int(s.primitives.size()) - 1 ||
+                -d.dot(h.point.normal) < 0.5)
+                continue;
             const auto [sx, sy] = pixelOf(src, h.point.position);
-            const RayHit hs = tracer.intersect(src.position, src.pixelDirection(sx + 0.5, sy + 0.5), 0.0);
+            const RayHit hs =
+                tracer.intersect(src.position, src.pixelDirection(sx + 0.5, sy + 0.5), 0.0);
             if (!hs.hit || (hs.point.position - h.point.position).length() > 0.003) continue;
             for (int c = 0; c < 3; ++c)
-                ASSERT_NEAR(srcImage.at(sx, sy)[c], refImage.at(x, y)[c], 0.03 * refImage.at(x, y)[c] + 1e-4) << x << "," << y;
+                ASSERT_NEAR(srcImage.at(sx, sy)[c], refImage.at(x, y)[c],
+                            0.03 * refImage.at(x, y)[c] + 1e-4)
+                    << x << "," << y;
             ++diffuse;
         }
     EXPECT_GT(diffuse, 300);
@@ -182,7 +190,8 @@ TEST(Specular, BakedFieldAndEnvmapsSeeTheMirrorAsDiffuseOfEqualReflectance) {
     bake.gatherRays = 16;
     const RadianceField field(s, tracer, panoramas(), bake);
     // From the mirror's centre towards the camera: its front point.
-    const RayHit hit = tracer.intersect(Vec3d(0.0), (kMirrorCentre - Vec3d(0, 0, kRadius)).unit(), 0.0);
+    const RayHit hit =
+        tracer.intersect(Vec3d(0.0), (kMirrorCentre - Vec3d(0, 0, kRadius)).unit(), 0.0);
     ASSERT_TRUE(hit.hit);
     ASSERT_EQ(hit.point.primitive, int(s.primitives.size()) - 2);
     const double favg = kMirrorF0 + (1 - kMirrorF0) / 21;  // hemispherical mean of Schlick's F
@@ -200,13 +209,16 @@ TEST(Specular, BakedFieldAndEnvmapsSeeTheMirrorAsDiffuseOfEqualReflectance) {
         int onMirror = 0;
         for (int y = 0; y < 120; ++y)
             for (int x = 0; x < 240; ++x) {
-                const Vec3d p(env.hitPositions.at(x, y)[0], env.hitPositions.at(x, y)[1], env.hitPositions.at(x, y)[2]);
+                const Vec3d p(env.hitPositions.at(x, y)[0], env.hitPositions.at(x, y)[1],
+                              env.hitPositions.at(x, y)[2]);
                 if (std::abs((p - kMirrorCentre).length() - kRadius) > 1e-3) continue;
                 const RayHit h = tracer.intersect(at, envmapPixelDirection(y, x, 240, 120), 0.0);
                 ASSERT_TRUE(h.hit);
                 ++onMirror;
-                // One sample at the pixel centre, as hitPositions, so the value is exactly the baked one.
-                ASSERT_NEAR(env.radiance.at(x, y)[0], field.radiance(h.point).x(), 1e-4 + 1e-4 * field.radiance(h.point).x());
+                // One sample at the pixel centre, as hitPositions, so the value is exactly the
+                // baked one.
+                ASSERT_NEAR(env.radiance.at(x, y)[0], field.radiance(h.point).x(),
+                            1e-4 + 1e-4 * field.radiance(h.point).x());
             }
         EXPECT_GT(onMirror, 50);
     }

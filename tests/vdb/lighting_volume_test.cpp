@@ -29,10 +29,12 @@ TEST(LightingVolume, FromLayoutHasNestedLevelsCoarsestFirst) {
 TEST(LightingVolume, FillLevelKeepsEmptySpaceInactive) {
     LightingVolume v = LightingVolume::fromLayout(VolumeLayout{8.0, 1, 16});
     // Half-voxel-aligned box: x in [0, 4) covers exactly 8 of 16 columns.
-    v.fillLevel(0, test::boxField(Vec3d(0, -4, -4), Vec3d(4, 4, 4), {2.f, openvdb::Vec3s(1, 0, 0)}));
+    v.fillLevel(0,
+                test::boxField(Vec3d(0, -4, -4), Vec3d(4, 4, 4), {2.f, openvdb::Vec3s(1, 0, 0)}));
     EXPECT_EQ(v.levels[0].density->activeVoxelCount(), 8u * 16 * 16);
     EXPECT_EQ(v.levels[0].density->tree().getValue(openvdb::Coord(12, 3, 3)), 2.f);
-    EXPECT_EQ(v.levels[0].color->tree().getValue(openvdb::Coord(12, 3, 3)), openvdb::Vec3s(1, 0, 0));
+    EXPECT_EQ(v.levels[0].color->tree().getValue(openvdb::Coord(12, 3, 3)),
+              openvdb::Vec3s(1, 0, 0));
     EXPECT_FALSE(v.levels[0].density->tree().isValueOn(openvdb::Coord(3, 3, 3)));
 }
 

@@ -48,7 +48,8 @@ TEST(Mpi, APlaneTooNearForOpenVdbIsBlamedOnTheNearDepth) {
         mpiPlaneTransform(cam, 1e-12);
         FAIL() << "no error for a plane at 1e-12 m";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("the cameras' near depth is implausibly small"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("the cameras' near depth is implausibly small"),
+                  std::string::npos)
             << e.what();
     }
     EXPECT_NO_THROW(mpiPlaneTransform(cam, 0.01));  // a centimetre is a plausible near depth

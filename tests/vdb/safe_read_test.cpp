@@ -15,8 +15,8 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -46,7 +46,8 @@ std::string exampleFile() {
 std::string corruptFile() {
     static const std::string path = [] {
         const std::string p = (std::filesystem::temp_directory_path() / "lh_safe_read" /
-                               ("corrupt_" + std::to_string(::getpid()) + ".vdb")).string();
+                               ("corrupt_" + std::to_string(::getpid()) + ".vdb"))
+                                  .string();
         std::ifstream in(exampleFile(), std::ios::binary);
         std::string bytes(std::istreambuf_iterator<char>(in), {});
         bytes.resize(bytes.size() / 2);  // truncated in the middle of its grids
@@ -61,7 +62,8 @@ std::string corruptFile() {
 std::string hugeSizeFile() {
     static const std::string path = [] {
         const std::string p = (std::filesystem::temp_directory_path() / "lh_safe_read" /
-                               ("huge_" + std::to_string(::getpid()) + ".vdb")).string();
+                               ("huge_" + std::to_string(::getpid()) + ".vdb"))
+                                  .string();
         openvdb::initialize();
         auto grid = openvdb::FloatGrid::create();
         grid->tree().setValueOn(openvdb::Coord(1, 2, 3), 1.f);
@@ -105,7 +107,8 @@ TEST(SafeRead, ACorruptFileIsAClearErrorFromTheProbe) {
         probeVdbReadable(corruptFile());
         ADD_FAILURE() << "a truncated file passed the trial read";
     } catch (const FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("is not a readable VDB file"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("is not a readable VDB file"), std::string::npos)
+            << e.what();
         EXPECT_NE(std::string(e.what()).find(corruptFile()), std::string::npos) << e.what();
     }
 }
@@ -115,7 +118,8 @@ TEST(SafeRead, ACorruptSizeIsCaughtByTheMemoryCap) {
         probeVdbReadable(hugeSizeFile(), std::size_t(1) << 30);
         ADD_FAILURE() << "a 2 GiB string read under a 1 GiB cap";
     } catch (const FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("would need more than 1 GiB: its sizes are corrupt"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("would need more than 1 GiB: its sizes are corrupt"),
+                  std::string::npos)
             << e.what();
     }
 }
@@ -126,20 +130,21 @@ TEST(SafeRead, TheProbesExitCodesSayWhatHappened) {
     EXPECT_EQ(probeExitCode({corruptFile(), cap}), kProbeReadFailed);
     EXPECT_EQ(probeExitCode({"/no/such/file.vdb", cap}), kProbeReadFailed);
     EXPECT_EQ(probeExitCode({hugeSizeFile(), cap}), kProbeOutOfMemory);
-    EXPECT_EQ(probeExitCode({exampleFile()}), kProbeUsage);           // no cap
-    EXPECT_EQ(probeExitCode({exampleFile(), "0"}), kProbeUsage);      // not positive
-    EXPECT_EQ(probeExitCode({exampleFile(), "2GiB"}), kProbeUsage);   // not a number of bytes
+    EXPECT_EQ(probeExitCode({exampleFile()}), kProbeUsage);          // no cap
+    EXPECT_EQ(probeExitCode({exampleFile(), "0"}), kProbeUsage);     // not positive
+    EXPECT_EQ(probeExitCode({exampleFile(), "2GiB"}), kProbeUsage);  // not a number of bytes
 }
 
 // The probe's child is the probe binary itself (its /proc/PID/exe), not a copy of this test
 // process: a fork without exec would show this test's executable there. The probe is held
 // on a FIFO (its open blocks until a writer comes) while the child is inspected.
 TEST(SafeRead, TheChildIsTheProbeProgramNotAForkOfTheCaller) {
-    const std::filesystem::path fifo =
-        std::filesystem::temp_directory_path() / ("lh_safe_read_exe_fifo_" + std::to_string(::getpid()));
+    const std::filesystem::path fifo = std::filesystem::temp_directory_path() /
+                                       ("lh_safe_read_exe_fifo_" + std::to_string(::getpid()));
     std::filesystem::remove(fifo);
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    auto verdict = std::async(std::launch::async, [&] { return probeVdbReadable(fifo.string(), 0, 10.0); });
+    auto verdict =
+        std::async(std::launch::async, [&] { return probeVdbReadable(fifo.string(), 0, 10.0); });
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
     const std::filesystem::path expected = std::filesystem::canonical(probeBinary());
     std::string seen;
@@ -156,10 +161,13 @@ TEST(SafeRead, TheChildIsTheProbeProgramNotAForkOfTheCaller) {
             if (close == std::string::npos) continue;
             char state = 0;
             long ppid = 0;
-            if (std::sscanf(line.c_str() + close + 1, " %c %ld", &state, &ppid) != 2 || ppid != ::getpid()) continue;
+            if (std::sscanf(line.c_str() + close + 1, " %c %ld", &state, &ppid) != 2 ||
+                ppid != ::getpid())
+                continue;
             std::error_code ec;
             const auto exe = std::filesystem::read_symlink(entry.path() / "exe", ec);
-            if (!ec && exe != self) seen = exe.string(), child = pid_t(std::stol(pid));  // before exec: us
+            if (!ec && exe != self)
+                seen = exe.string(), child = pid_t(std::stol(pid));  // before exec: us
         }
         if (seen != expected.string()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
@@ -178,13 +186,14 @@ TEST(SafeRead, TheChildIsTheProbeProgramNotAForkOfTheCaller) {
 // a FIFO nobody writes to, so its open() blocks until the kill. (A tiny deadline on a real
 // file was a race: on CI the child sometimes finished the read first.)
 TEST(SafeRead, AChildPastItsDeadlineIsKilledAndGivesNoVerdict) {
-    const std::filesystem::path fifo =
-        std::filesystem::temp_directory_path() / ("lh_safe_read_fifo_" + std::to_string(::getpid()));
+    const std::filesystem::path fifo = std::filesystem::temp_directory_path() /
+                                       ("lh_safe_read_fifo_" + std::to_string(::getpid()));
     std::filesystem::remove(fifo);
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << "cannot make a FIFO in the temporary directory";
     const auto start = std::chrono::steady_clock::now();
     EXPECT_EQ(probeVdbReadable(fifo.string(), 0, 0.3), ProbeResult::NotIsolated);
-    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::filesystem::remove(fifo);
     EXPECT_GE(waited, 0.3) << "the probe gave up before its deadline";
     // The next trial read is unaffected.
@@ -206,7 +215,8 @@ TEST(SafeRead, TrialReadsFinishWhileTheParentsThreadPoolIsBusy) {
             });
     });
     int read = 0;
-    for (int i = 0; i < 20; ++i) read += probeVdbReadable(exampleFile(), 0, 20.0) == ProbeResult::Read;
+    for (int i = 0; i < 20; ++i)
+        read += probeVdbReadable(exampleFile(), 0, 20.0) == ProbeResult::Read;
     stop = true;
     busy.join();
     EXPECT_EQ(read, 20);

@@ -21,7 +21,8 @@ using test::twoLevelsOf;
 
 double maxAbsDifference(const ImageRGB& a, const ImageRGB& b) {
     double d = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) d = std::max(d, std::abs(double(a.pixels[i]) - b.pixels[i]));
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        d = std::max(d, std::abs(double(a.pixels[i]) - b.pixels[i]));
     return d;
 }
 
@@ -33,14 +34,17 @@ ImageRGB envmapAt(const LightingVolume& v, const Vec3d& p) {
 TEST(Sparsity, NearlyConstantFieldBecomesTilesAndRendersWithinTheBound) {
     // sigma 0.8 with 1e-5 of ripple: leaves (exact zeros only are left out when filling),
     // which the tile pruning collapses: tolerance eps / (6 C) = 1e-3 / (3 * 5.54) / 3.6 = 1.7e-5.
-    const LightingVolume v = test::volumeOf({test::makeLevel(0.05, Vec3d(-1.6), openvdb::Coord(64), [](const Vec3d& p) {
-        const int ripple = int(std::floor(p.x() * 20) + 3 * std::floor(p.y() * 20) + 7 * std::floor(p.z() * 20)) & 7;
-        return MediumSample{0.8f + 1e-5f * ripple / 7.f, openvdb::Vec3s(0.6f, 0.4f, 0.2f)};
-    })});
+    const LightingVolume v =
+        test::volumeOf({test::makeLevel(0.05, Vec3d(-1.6), openvdb::Coord(64), [](const Vec3d& p) {
+            const int ripple = int(std::floor(p.x() * 20) + 3 * std::floor(p.y() * 20) +
+                                   7 * std::floor(p.z() * 20)) &
+                               7;
+            return MediumSample{0.8f + 1e-5f * ripple / 7.f, openvdb::Vec3s(0.6f, 0.4f, 0.2f)};
+        })});
     ASSERT_GT(v.levels[0].density->tree().leafCount(), 0u);
     SparsityStats stats;
     const LightingVolume s = sparsify(v, SparsityOptions{1e-3}, &stats);
-    EXPECT_EQ(stats.activeAfter, stats.activeBefore);           // nothing dropped ...
+    EXPECT_EQ(stats.activeAfter, stats.activeBefore);  // nothing dropped ...
     // ... but stored as tiles: what is left is the trees' fixed upper nodes (~0.45 MB a grid).
     EXPECT_LT(stats.memoryAfter * 2, stats.memoryBefore);
     EXPECT_EQ(s.levels[0].density->tree().leafCount(), 0u);
@@ -57,14 +61,16 @@ TEST(Sparsity, FinerLevelEqualToUpsampledCoarseIsDroppedAndRendersTheSame) {
     EXPECT_NEAR(std::cbrt(s.levels[0].voxelVolume()), 0.1, 1e-12);  // the coarse one stays
     for (const Vec3d& p : {Vec3d(0.1, 0.05, 0.2), Vec3d(-0.7, 0.3, -0.4)}) {
         const ImageRGB a = envmapAt(s, p), b = envmapAt(v, p);
-        for (std::size_t i = 0; i < a.pixels.size(); ++i) EXPECT_NEAR(a.pixels[i], b.pixels[i], 1e-4 * b.pixels[i] + 1e-7);
+        for (std::size_t i = 0; i < a.pixels.size(); ++i)
+            EXPECT_NEAR(a.pixels[i], b.pixels[i], 1e-4 * b.pixels[i] + 1e-7);
     }
 }
 
 TEST(Sparsity, FinerLevelShrinksToWhatTheCoarserMisses) {
     // The fine level adds a bright 0.1 box at [0.2, 0.3]^3 (fine voxels 14..15 per axis).
     const auto fine = [](const Vec3d& p) {
-        const bool in = p.x() > 0.2 && p.x() < 0.3 && p.y() > 0.2 && p.y() < 0.3 && p.z() > 0.2 && p.z() < 0.3;
+        const bool in =
+            p.x() > 0.2 && p.x() < 0.3 && p.y() > 0.2 && p.y() < 0.3 && p.z() > 0.2 && p.z() < 0.3;
         return in ? MediumSample{50.f, openvdb::Vec3s(4.f)} : linearField(p);
     };
     const LightingVolume v = twoLevelsOf(linearField, fine);
@@ -101,7 +107,8 @@ TEST(Sparsity, FogKeepsEveryEnvmapPixelWithinTheBound) {
         level.density = level.density->deepCopy();
         level.density->clear();
     }
-    EXPECT_GT(maxAbsDifference(envmapAt(empty, Vec3d(0, 0, 0)), envmapAt(v, Vec3d(0, 0, 0))), 3 * o.tau);
+    EXPECT_GT(maxAbsDifference(envmapAt(empty, Vec3d(0, 0, 0)), envmapAt(v, Vec3d(0, 0, 0))),
+              3 * o.tau);
 }
 
 TEST(Sparsity, QueryPointsInFogAreTheLeastDense) {

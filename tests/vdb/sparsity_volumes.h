@@ -17,7 +17,9 @@ inline LightingVolume twoLevelsOf(const std::function<MediumSample(const Vec3d&)
                            test::makeLevel(0.05, Vec3d(-0.5), openvdb::Coord(20), fine)});
 }
 
-inline MediumSample linearField(const Vec3d& p) { return {float(2.0 + p.x()), openvdb::Vec3s(0.5f, 0.3f, 0.2f)}; }
+inline MediumSample linearField(const Vec3d& p) {
+    return {float(2.0 + p.x()), openvdb::Vec3s(0.5f, 0.3f, 0.2f)};
+}
 
 // Dense low-alpha fog on two nested levels, as the network predicts it: every voxel has a
 // little density. Half the voxels (a hashed pattern) are very thin (sigma 1e-4), the others
@@ -35,9 +37,11 @@ inline float fogDensity(const Vec3d& p, double h) {
 
 inline LightingVolume fogVolume() {
     return test::volumeOf(
-        {test::makeLevel(0.1, Vec3d(-2), openvdb::Coord(40), [](const Vec3d& p) {
-             return MediumSample{fogDensity(p, 0.1), openvdb::Vec3s(0.9f, 0.6f, 0.3f)};
-         }),
+        {test::makeLevel(
+             0.1, Vec3d(-2), openvdb::Coord(40),
+             [](const Vec3d& p) {
+                 return MediumSample{fogDensity(p, 0.1), openvdb::Vec3s(0.9f, 0.6f, 0.3f)};
+             }),
          test::makeLevel(0.05, Vec3d(-1), openvdb::Coord(40), [](const Vec3d& p) {
              return MediumSample{fogDensity(p, 0.05), openvdb::Vec3s(0.3f, 0.8f, 0.5f)};
          })});

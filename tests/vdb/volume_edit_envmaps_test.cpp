@@ -19,14 +19,16 @@ using test::emptyVolume;
 using test::uniformVolume;
 
 float seen(const LightingVolume& v, const Vec3d& from, const Vec3d& dir, int channel = 0) {
-    return float(marchRay(RenderVolume(v), from, dir.unit(), MarchOptions{0.5, 0.0, true}).radiance[channel]);
+    return float(marchRay(RenderVolume(v), from, dir.unit(), MarchOptions{0.5, 0.0, true})
+                     .radiance[channel]);
 }
 
 TEST(VolumeEdit, AddedEmissiveBoxAppearsWhereItWasPut) {
     LightingVolume v = emptyVolume();
     addEmissiveBox(v, {Vec3d(2, -0.5, -0.5), Vec3d(3, 0.5, 0.5)}, openvdb::Vec3s(4, 0, 0), 100.f);
     const ImageRGB env = renderEnvmap(RenderVolume(v), Vec3d(0.0), {240, 120, MarchOptions{}});
-    const EnvmapCoord right = envmapCoordinate(Vec3d(1, 0, 0), 240, 120), left = envmapCoordinate(Vec3d(-1, 0, 0), 240, 120);
+    const EnvmapCoord right = envmapCoordinate(Vec3d(1, 0, 0), 240, 120),
+                      left = envmapCoordinate(Vec3d(-1, 0, 0), 240, 120);
     EXPECT_NEAR(env.at(int(right.column), int(right.row))[0], 4.0, 1e-3);  // column 3W/4
     EXPECT_EQ(env.at(int(left.column), int(left.row))[0], 0.f);
     // Also from inside the fine level looking out, and the fine level itself holds nothing.
@@ -37,8 +39,9 @@ TEST(VolumeEdit, AddedEmissiveBoxAppearsWhereItWasPut) {
 TEST(VolumeEdit, AddedSphereIsRoundAndInEveryLevel) {
     LightingVolume v = emptyVolume();
     addEmissiveSphere(v, Vec3d(0.5, 0, 0), 0.3, openvdb::Vec3s(0, 2, 0), 200.f);
-    EXPECT_NEAR(seen(v, Vec3d(-3, 0, 0), Vec3d(1, 0, 0), 1), 2.0, 1e-3);                 // through its centre
-    EXPECT_EQ(seen(v, Vec3d(-3, 0.28, 0.28), Vec3d(1, 0, 0), 1), 0.f);                     // past its edge (corner of the bounding box)
+    EXPECT_NEAR(seen(v, Vec3d(-3, 0, 0), Vec3d(1, 0, 0), 1), 2.0, 1e-3);  // through its centre
+    EXPECT_EQ(seen(v, Vec3d(-3, 0.28, 0.28), Vec3d(1, 0, 0), 1),
+              0.f);  // past its edge (corner of the bounding box)
     EXPECT_GT(v.levels[0].density->activeVoxelCount(), 0u);  // the coarse level too
     EXPECT_GT(v.levels[1].density->activeVoxelCount(), 0u);
 }

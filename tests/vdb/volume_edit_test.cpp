@@ -24,9 +24,12 @@ TEST(VolumeEdit, EditsCountTheVoxelsTheyChange) {
     EXPECT_EQ(addEmissiveBox(v, outside, openvdb::Vec3s(1), 10.f), 0u);
     EXPECT_EQ(eraseBox(v, outside), 0u);
     EXPECT_EQ(addEmissiveSphere(v, Vec3d(100), 0.5, openvdb::Vec3s(1), 10.f), 0u);
-    const std::size_t added = addEmissiveBox(v, {Vec3d(2, -0.5, -0.5), Vec3d(3, 0.5, 0.5)}, openvdb::Vec3s(4, 0, 0), 100.f);
+    const std::size_t added = addEmissiveBox(v, {Vec3d(2, -0.5, -0.5), Vec3d(3, 0.5, 0.5)},
+                                             openvdb::Vec3s(4, 0, 0), 100.f);
     EXPECT_GT(added, 0u);
-    EXPECT_EQ(added, std::size_t(v.activeVoxelCount()));  // the volume was empty: every painted voxel is new
+    EXPECT_EQ(
+        added,
+        std::size_t(v.activeVoxelCount()));  // the volume was empty: every painted voxel is new
     EXPECT_EQ(eraseBox(v, {Vec3d(2, -0.5, -0.5), Vec3d(3, 0.5, 0.5)}), added);
     EXPECT_EQ(v.activeVoxelCount(), 0u);
 }
@@ -35,7 +38,8 @@ TEST(VolumeEdit, ClampBoundsValues) {
     LightingVolume v = uniformVolume(1e6f, openvdb::Vec3s(1e5f, 2.f, 0.5f));
     clampValues(v, 10.f, 1.f);
     EXPECT_EQ(v.levels[1].density->tree().getValue(openvdb::Coord(3)), 10.f);
-    EXPECT_EQ(v.levels[1].color->tree().getValue(openvdb::Coord(3)), openvdb::Vec3s(1.f, 1.f, 0.5f));
+    EXPECT_EQ(v.levels[1].color->tree().getValue(openvdb::Coord(3)),
+              openvdb::Vec3s(1.f, 1.f, 0.5f));
 }
 
 }  // namespace

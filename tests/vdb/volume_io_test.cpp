@@ -110,8 +110,10 @@ TEST(VolumeIo, CorruptedFilesFailCleanly) {
     for (int i = 1; i <= 40; ++i) {
         std::string corrupt = bytes;
         const std::size_t at = bytes.size() * i / 41;
-        if (i % 2) corrupt.resize(at);          // truncated
-        else corrupt[at] = char(corrupt[at] ^ 0x5a);  // one flipped byte
+        if (i % 2)
+            corrupt.resize(at);  // truncated
+        else
+            corrupt[at] = char(corrupt[at] ^ 0x5a);  // one flipped byte
         std::ofstream(bad, std::ios::binary) << corrupt;
         try {
             loadVolume(bad);
@@ -208,8 +210,9 @@ TEST(VolumeIo, NonAffineTransformIsRefused) {
 
 TEST(VolumeIo, ForeignBlenderStyleFileLoadsAsOneLevel) {
     const std::string path = tempPath("blender_style.vdb");
-    VolumeLevel level = test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20),
-                                        test::boxField(Vec3d(0.2), Vec3d(0.6), {5.f, openvdb::Vec3s(1, 0, 0)}));
+    VolumeLevel level =
+        test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20),
+                        test::boxField(Vec3d(0.2), Vec3d(0.6), {5.f, openvdb::Vec3s(1, 0, 0)}));
     level.density->setName("density");
     level.color->setName("color");
     writeGrids(path, {level.density, level.color});

@@ -69,7 +69,8 @@ TEST(VolumeLayout, ImpossibleLayoutsAreRefused) {
         ADD_FAILURE() << "no error for far = 2e-12";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("near and far in cameras.json are depths in metres"),
-                  std::string::npos) << e.what();
+                  std::string::npos)
+            << e.what();
     }
     EXPECT_NO_THROW(VolumeLayout::fromFarDepth(0.01));
     EXPECT_NO_THROW((VolumeLayout{10.0, 5, 64}.validate()));
@@ -87,8 +88,10 @@ TEST(VolumeLayout, JsonRoundTrip) {
 // dcc_manifest.cpp; fuzz/corpus/dcc_manifest/crash_layout_levels_1e300.json), 2^32 + 1 wrapped
 // to a valid 1.
 TEST(VolumeLayout, CountsThatAreNotWholeIntsAreRefused) {
-    for (const char* bad : {"1e300", "-1e300", "4294967297", "18446744073709551615", "2.5", "\"4\"", "null"}) {
-        const std::string json = std::string(R"({"s0": 13.5, "levels": )") + bad + R"(, "resolution": 32})";
+    for (const char* bad :
+         {"1e300", "-1e300", "4294967297", "18446744073709551615", "2.5", "\"4\"", "null"}) {
+        const std::string json =
+            std::string(R"({"s0": 13.5, "levels": )") + bad + R"(, "resolution": 32})";
         try {
             VolumeLayout::fromJson(json, "where.vdb");
             ADD_FAILURE() << "accepted " << json;
