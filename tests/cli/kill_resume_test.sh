@@ -98,8 +98,7 @@ synth)
     run whole synth "${tiny[@]}" --count 4 -o whole || exit 1
     # Killed while an example after the first is being written (its folder's temporary name
     # exists for some tens of milliseconds).
-    start cut1 synth "${tiny[@]}" --count 4 -o cut
-    kill_when cut1 "cut/.00000[123].partial"
+    kill_when_retrying cut1 "cut/.00000[123].partial" "rm -rf cut" synth "${tiny[@]}" --count 4 -o cut
     [ -f cut/000000/scene.json ] || fail "the complete example 000000 is not under its name"
     for p in cut/.*.partial; do
         id=${p#cut/.}
@@ -130,16 +129,15 @@ export)
     run volume make-example --levels 3 --res 128 -o room.vdb || exit 1
     run other make-example --levels 2 --res 64 -o other.vdb || exit 1
     # Killed while the first export is being written: nothing under the final name.
-    start exp1 export room.vdb --for blender -o exp
-    kill_when exp1 ".exp.tmpPID_*/level_*.vdb"
+    kill_when_retrying exp1 ".exp.tmpPID_*/level_*.vdb" "rm -rf exp" export room.vdb --for blender -o exp
     [ -e exp ] && fail "a killed export left something under its final name"
     run exp1_again export room.vdb --for blender -o exp || exit 1
     no_temporaries exp; [ -z "$(compgen -G '.exp.*')" ] || fail "left beside exp: $(compgen -G '.exp.*')"
     run import1 import exp --from blender -o back1.vdb
     # Killed while replacing it (--force): the old export stays, whole and unchanged.
     cp -a exp exp_before
-    start exp2 export room.vdb --for blender --force -o exp
-    kill_when exp2 ".exp.tmpPID_*/level_*.vdb"
+    kill_when_retrying exp2 ".exp.tmpPID_*/level_*.vdb" "rm -rf exp && cp -a exp_before exp" \
+        export room.vdb --for blender --force -o exp
     diff -r exp_before exp >/dev/null || fail "a killed export --force changed the export it was replacing"
     # Killed at fixed delays: whatever the moment, the final name holds a whole export.
     for delay in 0.05 0.1 0.2 0.3 0.35 0.4 0.45; do
@@ -168,14 +166,15 @@ train)
     start cut1 "${train[@]}" -o cut.pt
     kill_when cut1 cut.pt.checkpoint
     # Killed while a checkpoint is being written: the previous one stays, whole.
-    start cut2 "${train[@]}" -o cut.pt
-    kill_when cut2 ".cut.pt.tmpPID_*.checkpoint"
+    cp cut.pt.checkpoint first.checkpoint
+    # A run that ends before it is caught is undone: back to the first checkpoint.
+    kill_when_retrying cut2 ".cut.pt.tmpPID_*.checkpoint" "cp first.checkpoint cut.pt.checkpoint && rm -f cut.pt" \
+        "${train[@]}" -o cut.pt
     [ -f cut.pt.checkpoint ] || fail "killed mid-checkpoint: the previous checkpoint is gone"
     [ -n "$(compgen -G ".cut.pt.tmp${pid}_*.checkpoint")" ] || fail "the killed checkpoint's temporary is not there"
     grep -q "resuming from cut.pt.checkpoint at iteration [1-9]" cut2.log || fail "cut2 did not resume: $(cat cut2.log)"
     # Killed while the model file is being written.
-    start cut3 "${train[@]}" -o cut.pt
-    kill_when cut3 ".cut.tmpPID_*.pt"
+    kill_when_retrying cut3 ".cut.tmpPID_*.pt" "rm -f cut.pt" "${train[@]}" -o cut.pt
     run resumed "${train[@]}" -o cut.pt || exit 1
     grep -q "resuming from cut.pt.checkpoint at iteration [1-9]" resumed.log ||
         fail "the last run did not resume: $(cat resumed.log)"
