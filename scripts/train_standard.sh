@@ -1,24 +1,33 @@
 #!/usr/bin/env bash
 # Reproduces the bundled model models/standard.pt (models/README.md records the run):
-#   1. 1500 synthetic training scenes with their oracle volumes (about 0.85 s each on 2 cores);
-#   2. `train` with direct supervision, resumable: run this script again after an interruption
-#      and training continues from the checkpoint (outside the repository, in $WORK).
-# Then the committed model: OUT in half precision (--half), copied to models/standard.pt. With today's
-# code this is one run; the bundled model was made in two phases (models/README.md).
+#   1. 1988 synthetic training scenes (generator version 3) with three envmaps and a 5 x 64^3
+#      oracle volume each (about 1 s per scene on 2 cores, 4.4 GB);
+#   2. `train` with direct supervision, fine-tuning (--init) the previous bundled model (from
+#      the git history, commit fb252c4), resumable: run this script again after an
+#      interruption and training continues from the checkpoint (outside the repository, in
+#      $WORK);
+#   3. the committed model: the moving average of the weights in half precision (--half),
+#      written from the final checkpoint, copied to models/standard.pt.
+# The bundled model was trained while the code gained its last losses and augmentations
+# (models/README.md says at which iterations); with today's code this is one run.
 # WORK (default /work/lighthouse-train) holds the data, the checkpoint and the logs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=build/cli/lighthouse
 work=${WORK:-/work/lighthouse-train}
-iterations=${ITERATIONS:-1300}
+iterations=${ITERATIONS:-3500}
 mkdir -p "$work"
 
-"$bin" synth --split train --count 1500 --size 192x144 --envmap-size 120x60 \
-  --oracle-levels 5 --oracle-res 64 -o "$work/data/train_a"
-"$bin" --threads 2 train --data "$work/data/train_a" --config standard \
-  -o "$work/standard.pt" --half --checkpoint "$work/standard.checkpoint" \
-  --iterations "$iterations" --lr 4e-4 --validate-every 250 --validation-scenes 6 \
-  --log-every 10 --checkpoint-every 50
+"$bin" synth --split train --seed 0 --count 1988 --envmaps 3 --size 192x144 \
+  --envmap-size 120x60 --oracle-levels 5 --oracle-res 64 -o "$work/data/train_v3"
+[ -f "$work/previous_standard.pt" ] ||
+  git show fb252c4:models/standard.pt > "$work/previous_standard.pt"
+train=(--threads 1 train --data "$work/data/train_v3" --config standard
+       --init "$work/previous_standard.pt" -o "$work/standard.pt"
+       --checkpoint "$work/standard.checkpoint" --iterations "$iterations" --lr 3e-4 --seed 5
+       --validate-every 250 --validation-scenes 6 --checkpoint-every 100 --log-every 25)
+"$bin" "${train[@]}"
+"$bin" "${train[@]}" --half  # resumes at the end: writes the model again, in half precision
 cp "$work/standard.pt" models/standard.pt
 cp "$work/standard.pt.csv" models/standard_training_log.csv
 cp "$work/standard.pt.png" models/standard_training_curves.png
