@@ -9,6 +9,7 @@ function(add_kill_resume_test part timeout)
 endfunction()
 add_kill_resume_test(synth 120)
 add_kill_resume_test(export 120)
+add_kill_resume_test(others 180)
 if(TARGET lighthouse_net)  # predict and train run in lighthouse-net
   add_kill_resume_test(predict 240)
   add_kill_resume_test(train 240)

@@ -15,9 +15,11 @@
 #           checkpoint and ends with the weights of an uninterrupted run; the checkpoint and
 #           the model load.
 # Every part ends with no temporary (a hidden file or folder) left in its output folder.
-#   kill_resume_test.sh LIGHTHOUSE WORKDIR synth|export|predict|train
+#   others  render-envmap with several points and eval, killed at fixed delays: every file
+#           under its final name is whole, and the same command writes them all.
+#   kill_resume_test.sh LIGHTHOUSE WORKDIR synth|export|predict|train|others
 set -u
-[ $# -eq 3 ] || { echo "usage: $0 LIGHTHOUSE WORKDIR synth|export|predict|train" >&2; exit 2; }
+[ $# -eq 3 ] || { echo "usage: $0 LIGHTHOUSE WORKDIR synth|export|predict|train|others" >&2; exit 2; }
 lh=$1
 work=$2
 part=$3
@@ -89,6 +91,24 @@ no_temporaries() {
     local left
     left=$(find "$@" -mindepth 1 -name '.*' 2>/dev/null)
     [ -z "$left" ] || fail "temporaries left behind: $left"
+}
+
+# same_or_absent WHOLE CUT: every file the uninterrupted run wrote to WHOLE is, in CUT, either
+# absent or equal to it, and CUT holds no other file under a final (not hidden) name.
+same_or_absent() {
+    local f
+    for f in $(cd "$2" && find . -type f ! -name '.*'); do
+        [ -e "$1/$f" ] || fail "$2/$f is not a file the uninterrupted run writes"
+        cmp -s "$1/$f" "$2/$f" || fail "$2/$f differs from the uninterrupted run's (a half-written file?)"
+    done
+}
+# same_files WHOLE CUT: the two folders hold the same files under final names, equal byte for byte.
+same_files() {
+    local f
+    for f in $(cd "$1" && find . -type f ! -name '.*'); do
+        cmp -s "$1/$f" "$2/$f" || fail "$2/$f differs from the uninterrupted run's, or is missing"
+    done
+    same_or_absent "$1" "$2"
 }
 
 tiny=(--seed 5 --size 48x36 --envmap-size 32x16 --envmaps 1 --supersample 1)
@@ -219,6 +239,51 @@ predict)
     done
     no_temporaries out
     echo "ok predict_killed_and_rerun"
+    ;;
+others)
+    # Commands that write several files and start again from the beginning (render-envmap
+    # with several points, eval), killed at fixed delays: whatever the moment, every file
+    # under its final name equals the uninterrupted run's, and the same command then writes
+    # them all.
+    run volume make-example --levels 3 --res 128 -o room.vdb || exit 1
+    envmaps=(render-envmap room.vdb --at 0,0,2 --at 0.2,0.1,0.45 --at -1,0.5,4 --size 960x480 --png)
+    mkdir -p env_whole env
+    run env_whole "${envmaps[@]}" -o env_whole/e.exr || exit 1
+    # Killed once the first envmap is complete, while a later one is being written, and at
+    # fixed delays.
+    start env_a "${envmaps[@]}" -o env/e.exr
+    kill_when env_a "env/e_000.png"
+    same_or_absent env_whole env
+    kill_when_retrying env_b "env/.e_00[12].tmpPID_*.exr" "rm -f env/e_*" "${envmaps[@]}" -o env/e.exr
+    same_or_absent env_whole env
+    for delay in 0.5 1 1.5; do
+        start "env_$delay" "${envmaps[@]}" -o env/e.exr
+        kill_after "env_$delay" "$delay"
+        same_or_absent env_whole env
+    done
+    run env_rerun "${envmaps[@]}" -o env/e.exr || exit 1
+    same_files env_whole env
+    no_temporaries env
+    echo "ok render_envmap_killed_and_rerun"
+    if "$lh" eval --help >/dev/null 2>&1; then
+        run data synth "${tiny[@]}" --split test --count 2 -o syn || exit 1
+        evaluate=(--threads 1 eval --data syn --no-oracle)
+        run eval_whole "${evaluate[@]}" -o eval_whole || exit 1
+        # Killed as soon as one of its files has its final name (when the poll sees it before
+        # the command ends), then at fixed delays.
+        start eval_a "${evaluate[@]}" -o eval_cut
+        wait_and_kill eval_a "eval_cut/[a-z]*" || echo "eval_a ended before it was caught"
+        same_or_absent eval_whole eval_cut
+        for delay in 0.5 1 1.5 2 2.5 3; do
+            start "eval_$delay" "${evaluate[@]}" -o eval_cut
+            kill_after "eval_$delay" "$delay"
+            [ -d eval_cut ] && same_or_absent eval_whole eval_cut
+        done
+        run eval_rerun "${evaluate[@]}" -o eval_cut || exit 1
+        same_files eval_whole eval_cut
+        no_temporaries eval_cut
+        echo "ok eval_killed_and_rerun"
+    fi
     ;;
 *)
     echo "unknown part '$part'" >&2
