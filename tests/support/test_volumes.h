@@ -3,6 +3,8 @@
 
 #include "vdb/lighting_volume.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 
 namespace lh::test {
@@ -40,6 +42,15 @@ inline std::function<MediumSample(const Vec3d&)> boxField(const Vec3d& lo, const
                         p.z() >= lo.z() && p.z() <= hi.z();
         return in ? inside : MediumSample{};
     };
+}
+
+// A homogeneous medium (sigma 1.5, radiance (2, 1, 0.5)) between |p|_inf = 1 and 2, a box
+// shell around the origin, on one level of 0.05 voxels.
+inline LightingVolume boxShellVolume() {
+    return volumeOf({makeLevel(0.05, Vec3d(-2), openvdb::Coord(80), [](const Vec3d& p) {
+        const double m = std::max({std::abs(p.x()), std::abs(p.y()), std::abs(p.z())});
+        return m > 1.0 ? MediumSample{1.5f, openvdb::Vec3s(2.f, 1.f, 0.5f)} : MediumSample{};
+    })});
 }
 
 }  // namespace lh::test
