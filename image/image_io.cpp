@@ -3,6 +3,7 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "image/image_orientation.h"
+#include "image/srgb8.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -152,20 +153,15 @@ ImageRGB readStb(const std::string& path) {
         stbi_load(path.c_str(), &width, &height, &fileChannels, wantedChannels), &stbi_image_free);
     if (!bytes) throwStbFailure(path);
 
-    static const std::array<float, 256> toLinear = [] {
-        std::array<float, 256> table{};
-        for (int i = 0; i < 256; ++i) table[i] = srgbDecode(i / 255.0f);
-        return table;
-    }();
     // Photos are used upright. Turned while converted: a turned copy of the float image had
     // readImage hold 27 bytes a pixel, 3.6 GB for the 585-byte JPEG of 2043 x 65528 pixels that
     // the JPEG fuzz target found (fuzz/corpus/image_jpeg/crash_exif_flipped_134_megapixels.jpg).
     const stbi_uc* stored = bytes.get();
     return uprightImage(width, height, exifOrientation(path), [&](int sx, int sy, float* to) {
         const stbi_uc* from = stored + (std::size_t(sy) * std::size_t(width) + std::size_t(sx)) * 3;
-        to[0] = toLinear[from[0]];
-        to[1] = toLinear[from[1]];
-        to[2] = toLinear[from[2]];
+        to[0] = linearFromSrgb8(from[0]);
+        to[1] = linearFromSrgb8(from[1]);
+        to[2] = linearFromSrgb8(from[2]);
     });
 }
 
@@ -212,11 +208,8 @@ void writePng(const ImageRGB& image, const std::string& path, float exposure) {
     AtomicOutput out(path);
 
     std::vector<unsigned char> bytes(image.pixels.size());
-    for (std::size_t i = 0; i < bytes.size(); ++i) {
-        const float v = image.pixels[i] * exposure;
-        const float clamped = v > 0.0f ? std::min(v, 1.0f) : 0.0f;  // NaN fails v > 0: 0
-        bytes[i] = static_cast<unsigned char>(srgbEncode(clamped) * 255.0f + 0.5f);
-    }
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = srgb8FromLinear(image.pixels[i] * exposure);
     if (!stbi_write_png(out.tempPath().c_str(), image.width, image.height, 3, bytes.data(),
                         image.width * 3))
         throw FileError("cannot write '" + path + "': PNG encoder failed");

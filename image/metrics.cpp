@@ -1,8 +1,8 @@
 #include "image/metrics.h"
 
 #include "core/errors.h"
-#include "image/envmap_layout.h"
 #include "image/image_io.h"
+#include "image/irradiance_weights.h"
 
 #include <algorithm>
 #include <cmath>
@@ -65,10 +65,6 @@ double luminance(const float* rgb) {
     return std::max(y, 0.0);
 }
 
-// The unit axis normals in AxisNormal order.
-const Vec3d kNormals[kAxisNormals] = {Vec3d(1, 0, 0),  Vec3d(-1, 0, 0), Vec3d(0, 1, 0),
-                                      Vec3d(0, -1, 0), Vec3d(0, 0, 1),  Vec3d(0, 0, -1)};
-
 }  // namespace
 
 double psnr(const ImageRGB& pred, const ImageRGB& gt, const std::vector<std::uint8_t>* mask) {
@@ -109,19 +105,14 @@ AxisIrradiance axisIrradiance(const ImageRGB& envmap) {
     if (envmap.empty()) throw InputError("cannot integrate the irradiance of an empty envmap");
     if (!allFinite(envmap)) throw InputError("envmap holds NaN/Inf");
     AxisIrradiance result{};
-    const int width = envmap.width, height = envmap.height;
-    const double pixelArea = (2.0 * M_PI / width) * (M_PI / height);  // sr per unit sin(phi)
-    for (int r = 0; r < height; ++r) {
-        const double sinPhi = std::sin(envmapPolarAngle(r + 0.5, height));
-        const double solidAngle = pixelArea * sinPhi;
-        for (int c = 0; c < width; ++c) {
-            const Vec3d d = envmapPixelDirection(r, c, width, height);
-            const float* radiance = envmap.at(c, r);
-            for (int n = 0; n < kAxisNormals; ++n) {
-                const double weight = std::max(0.0, kNormals[n].dot(d)) * solidAngle;
-                if (weight == 0.0) continue;
-                for (int ch = 0; ch < 3; ++ch) result.rgb[n][ch] += weight * radiance[ch];
-            }
+    const std::vector<double> weights = axisIrradianceWeights(envmap.width, envmap.height);
+    const std::size_t pixels = std::size_t(envmap.width) * envmap.height;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const float* radiance = &envmap.pixels[3 * p];
+        const double* weight = &weights[p * kAxisNormals];
+        for (int n = 0; n < kAxisNormals; ++n) {
+            if (weight[n] == 0.0) continue;
+            for (int ch = 0; ch < 3; ++ch) result.rgb[n][ch] += weight[n] * radiance[ch];
         }
     }
     return result;

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "image/image_io.h"
+#include "image/srgb8.h"
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -25,9 +26,7 @@ Augmentation drawAugmentation(Random& rng) {
 
 ImageRGB jpegRoundTrip(const ImageRGB& linear, int quality) {
     std::vector<std::uint8_t> codes(linear.pixels.size());
-    for (std::size_t i = 0; i < codes.size(); ++i)
-        codes[i] =
-            std::uint8_t(std::lround(srgbEncode(std::clamp(linear.pixels[i], 0.f, 1.f)) * 255.0));
+    for (std::size_t i = 0; i < codes.size(); ++i) codes[i] = srgb8FromLinear(linear.pixels[i]);
     std::vector<std::uint8_t> file;
     const auto append = [](void* context, void* data, int size) {
         auto* out = static_cast<std::vector<std::uint8_t>*>(context);
@@ -46,7 +45,7 @@ ImageRGB jpegRoundTrip(const ImageRGB& linear, int quality) {
         throw Error("JPEG augmentation: could not decode the image it encoded");
     ImageRGB out(w, h);
     for (std::size_t i = 0; i < out.pixels.size(); ++i)
-        out.pixels[i] = srgbDecode(decoded.get()[i] / 255.0f);
+        out.pixels[i] = linearFromSrgb8(decoded.get()[i]);
     return out;
 }
 
@@ -65,8 +64,8 @@ void augmentPhoto(ImageRGB& photo, const Augmentation& a, Random& rng) {
         const float linear = std::clamp(float(photo.pixels[i] * a.factor(int(i % 3))), 0.f, 1.f);
         double code = srgbEncode(linear);
         if (a.noiseSigma > 0) code += a.noiseSigma * gaussian(rng);
-        code = std::round(std::clamp(code, 0.0, 1.0) * 255.0) / 255.0;
-        photo.pixels[i] = srgbDecode(float(code));
+        photo.pixels[i] =
+            linearFromSrgb8(std::uint8_t(std::lround(std::clamp(code, 0.0, 1.0) * 255.0)));
     }
     if (a.jpegQuality > 0) photo = jpegRoundTrip(photo, a.jpegQuality);
 }

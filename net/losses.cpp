@@ -1,5 +1,6 @@
 #include "net/losses.h"
 
+#include "image/irradiance_weights.h"
 #include "net/tensor_image.h"
 #include "net/volume_render.h"
 
@@ -109,20 +110,12 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& 
 
 torch::Tensor axisIrradianceTensor(const torch::Tensor& envmaps) {
     const int64_t n = envmaps.size(0), h = envmaps.size(2), w = envmaps.size(3);
-    const auto dirs = envmapDirections(int(w), int(h)).view({-1, 3});  // [P, 3], float64
-    // Solid angle of a pixel: (2 pi / W)(pi / H) sin(phi), phi its polar angle.
-    const auto phi = (torch::arange(h, torch::kFloat64) + 0.5) * (M_PI / double(h));
-    const auto solidAngle = (torch::sin(phi) * (2.0 * M_PI / double(w)) * (M_PI / double(h)))
-                                .view({h, 1})
-                                .expand({h, w})
-                                .reshape({-1});
-    const auto normals = torch::tensor({1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0, 0.0,  //
-                                        0.0, -1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -1.0},
-                                       torch::kFloat64)
-                             .view({6, 3});
-    // [P, 6]: max(0, n . d) dOmega, columns in the order +x, -x, +y, -y, +z, -z.
-    const auto weights = (torch::mm(dirs, normals.t()).clamp_min(0.0) * solidAngle.view({-1, 1}))
-                             .to(envmaps.device(), envmaps.scalar_type());
+    // [P, 6]: max(0, n . d) dOmega, the metric's own table (image/irradiance_weights.h).
+    std::vector<double> table = axisIrradianceWeights(int(w), int(h));
+    const auto weights =
+        torch::from_blob(table.data(), {h * w, int64_t(kAxisNormals)}, torch::kFloat64)
+            .to(envmaps.device(), envmaps.scalar_type(), /*non_blocking=*/false,
+                /*copy=*/true);  // owns its memory: `table` dies here
     return torch::matmul(envmaps.reshape({n, 3, h * w}), weights);
 }
 

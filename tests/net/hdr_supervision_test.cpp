@@ -1,9 +1,11 @@
 // The HDR design and direct supervision: the HDR activation, the new losses' known values,
 // the 2D MPI network's shapes, and short optimisations with known outcomes (an empty room's
 // interior becomes empty; a volume moves towards its oracle).
+#include "image/metrics.h"
 #include "net/hdr.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
+#include "net/tensor_image.h"
 #include "net/volume_render.h"
 #include "tests/net/net_test_scenes.h"
 #include "vdb/mpi.h"
@@ -69,6 +71,26 @@ TEST(Losses, AxisIrradianceOfAConstantEnvmapIsPiTimesItsRadiance) {
     EXPECT_NEAR(u[0][1][3].item<double>(), M_PI, 2e-3 * M_PI);      // normal -y: up
     EXPECT_NEAR(u[0][1][2].item<double>(), 0.0, 1e-6);              // normal +y: down
     EXPECT_NEAR(u[0][1][0].item<double>(), M_PI / 2, 2e-3 * M_PI);  // sideways: half the sky
+}
+
+TEST(Losses, AxisIrradianceTensorEqualsTheMetric) {
+    // The loss integrates with the metric's own weights: a lamp at +x and a blue floor give the
+    // same six irradiances in torch as image/metrics.h's axisIrradiance.
+    ImageRGB envmap(48, 24);
+    for (int r = 0; r < envmap.height; ++r)
+        for (int c = 0; c < envmap.width; ++c) {
+            float* p = envmap.at(c, r);
+            p[0] = 0.2f + 0.01f * float(c);
+            p[1] = 0.3f;
+            p[2] = r >= envmap.height / 2 ? 0.8f : 0.1f;
+        }
+    envmap.at(3 * envmap.width / 4, envmap.height / 2)[0] = 90.0f;
+    const AxisIrradiance expected = axisIrradiance(envmap);
+    const auto e = axisIrradianceTensor(imageToTensor(envmap).to(torch::kFloat64));
+    for (int n = 0; n < kAxisNormals; ++n)
+        for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(e[0][ch][n].item<double>(), expected.rgb[n][ch], 1e-9 * expected.rgb[n][ch])
+                << "normal " << n << " channel " << ch;
 }
 
 TEST(Losses, IrradianceLossIsZeroOnIdenticalInputsAndIndifferentToWhereALampIs) {
