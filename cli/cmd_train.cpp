@@ -54,6 +54,10 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "this decay per "
                     "iteration (0: the last step's weights)")
         ->capture_default_str();
+    cmd->add_option("--irradiance-weight", o->irradianceWeight,
+                    "Weight of the diffuse-irradiance loss (the light each axis-facing diffuse "
+                    "patch receives) beside the per-pixel envmap losses")
+        ->capture_default_str();
     cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")
         ->capture_default_str();
     cmd->add_option("--validation-scenes", o->validationScenes,

@@ -46,6 +46,8 @@ void TrainOptions::validate() const {
     if (batch < 1 || batch > 4096) throw InputError("--batch must be in [1, 4096]");
     if (!(averageDecay >= 0 && averageDecay < 1))
         throw InputError("--average-decay must be in [0, 1)");
+    if (!(irradianceWeight >= 0 && irradianceWeight <= 100))
+        throw InputError("--irradiance-weight must be in [0, 100]");
     if (batch % distributed.worldSize != 0)
         throw InputError(
             "--batch " + std::to_string(batch) + " must be a multiple of the world size " +
@@ -59,9 +61,6 @@ constexpr double kStage2Start = 0.25, kStage3Start = 0.9, kLowLearningRateStart 
 constexpr double kAdversarialWeight = 0.1, kGradientClipNorm = 5.0;
 
 constexpr double kSparsityWeight = 0.05;  // paper supervision only
-// The irradiance loss's relative error is 0.3-1 where a model misses the lamps, about the size
-// of the per-pixel envmap losses; half of it keeps them in charge of where things are.
-constexpr double kIrradianceWeight = 0.5;
 
 struct LogRow {
     int iteration = 0, stage = 1;
@@ -522,7 +521,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                         config.trainEnvHeight, config.samplesPerLevel);
                     envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) +
                               hdrImageLoss(rendered, ex.envmaps[k]) +
-                              kIrradianceWeight * irradianceLoss(rendered, ex.envmaps[k]);
+                              o.irradianceWeight * irradianceLoss(rendered, ex.envmaps[k]);
                     if (k == e) env = rendered;
                 }
                 const auto& gt = ex.envmaps[e];

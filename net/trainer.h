@@ -58,6 +58,10 @@ struct TrainOptions {
     // The model written and validated is the exponential moving average of the weights with
     // this decay per iteration (net/weight_average.h); 0: the weights of the last step.
     double averageDecay = 0.998;
+    // Weight of the diffuse-irradiance loss (net/losses.h) beside the per-pixel envmap losses.
+    // Its relative error is 0.3-1 where a model misses the lamps, about the size of the
+    // per-pixel losses; 0.5 keeps those in charge of where things are.
+    double irradianceWeight = 0.5;
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

@@ -126,6 +126,34 @@ TEST_F(TrainerTest, TheModelWrittenIsTheAverageOfTheWeights) {
     removeOutputs(slow);
 }
 
+TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
+    // The same seed and data with the irradiance loss off and strong: the envmap stage's
+    // gradients differ, so do the weights; a negative weight is refused.
+    std::ostringstream log;
+    const auto trained = [&](const std::string& name, double weight) {
+        TrainOptions o = options(name);
+        o.averageDecay = 0.0;
+        o.halfModel = false;
+        o.irradianceWeight = weight;
+        train(o, log);
+        return o;
+    };
+    const TrainOptions off = trained("lighthouse_trainer_irradiance_off", 0.0);
+    const TrainOptions strong = trained("lighthouse_trainer_irradiance_strong", 4.0);
+    LighthouseNet a = loadModel(off.out, torch::Device(torch::kCPU));
+    LighthouseNet b = loadModel(strong.out, torch::Device(torch::kCPU));
+    const auto pb = b->named_parameters();
+    double largest = 0;
+    for (const auto& p : a->named_parameters())
+        largest = std::max(largest, (p.value() - pb[p.key()]).abs().max().item<double>());
+    EXPECT_GT(largest, 1e-6) << "the irradiance weight changed nothing";
+    removeOutputs(off);
+    removeOutputs(strong);
+    TrainOptions negative = options("lighthouse_trainer_irradiance_negative");
+    negative.irradianceWeight = -1.0;
+    EXPECT_THROW(negative.validate(), InputError);
+}
+
 TEST_F(TrainerTest, DirectSupervisionUsesTheOracleAndTheDepth) {
     std::ostringstream log;
     TrainOptions o = options("lighthouse_trainer_direct");
