@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -52,6 +53,20 @@ protected:
         for (const std::string suffix : {"", ".csv", ".png", ".checkpoint"})
             fs::remove(o.out + suffix);
     }
+    // Largest |difference| over the weights of two networks of one configuration; NaN (which
+    // fails every comparison) after a test failure if their parameter lists differ.
+    static double largestWeightDifference(const LighthouseNet& a, const LighthouseNet& b) {
+        const auto pa = a->named_parameters(), pb = b->named_parameters();
+        EXPECT_EQ(pa.size(), pb.size());
+        if (pa.size() != pb.size()) return std::nan("");
+        double largest = 0;
+        for (const auto& p : pa)
+            largest = std::max(largest, (p.value() - pb[p.key()]).abs().max().item<double>());
+        return largest;
+    }
+    static double largestWeightDifference(const LighthouseNet& a, const std::string& modelPath) {
+        return largestWeightDifference(a, loadModel(modelPath, torch::Device(torch::kCPU)));
+    }
     static std::string readText(const std::string& path) {
         std::ifstream in(path);
         std::stringstream s;
@@ -80,20 +95,12 @@ TEST_F(TrainerTest, ResumingGivesTheWeightsOfAnUninterruptedRun) {
     EXPECT_NE(log.str().find("resuming from"), std::string::npos);
 
     LighthouseNet a = loadModel(whole.out, torch::Device(torch::kCPU));
-    LighthouseNet b = loadModel(split.out, torch::Device(torch::kCPU));
-    const auto pa = a->named_parameters(), pb = b->named_parameters();
-    ASSERT_EQ(pa.size(), pb.size());
-    double worst = 0;
-    for (const auto& p : pa)
-        worst = std::max(worst, (p.value() - pb[p.key()]).abs().max().item<double>());
-    EXPECT_LT(worst, 1e-5) << "largest weight difference between the two runs";
+    EXPECT_LT(largestWeightDifference(a, split.out), 1e-5)
+        << "largest weight difference between the two runs";
     // The trained weights moved away from a fresh network's (the comparison is not vacuous).
     torch::manual_seed(3);
     LighthouseNet fresh(test::tinyHdrConfig());
-    double moved = 0;
-    for (const auto& p : fresh->named_parameters())
-        moved = std::max(moved, (p.value() - pa[p.key()]).abs().max().item<double>());
-    EXPECT_GT(moved, 1e-4);
+    EXPECT_GT(largestWeightDifference(fresh, a), 1e-4);
     removeOutputs(whole);
     removeOutputs(split);
 }
@@ -112,16 +119,9 @@ TEST_F(TrainerTest, TheModelWrittenIsTheAverageOfTheWeights) {
     train(slow, log);
     torch::manual_seed(3);
     LighthouseNet fresh(test::tinyHdrConfig());
-    const auto distanceFromFresh = [&](const std::string& path) {
-        LighthouseNet m = loadModel(path, torch::Device(torch::kCPU));
-        const auto parameters = m->named_parameters();
-        double worst = 0;
-        for (const auto& p : fresh->named_parameters())
-            worst = std::max(worst, (p.value() - parameters[p.key()]).abs().max().item<double>());
-        return worst;
-    };
-    EXPECT_GT(distanceFromFresh(last.out), 1e-4);
-    EXPECT_LT(distanceFromFresh(slow.out), 1e-3 * distanceFromFresh(last.out));
+    const double lastMoved = largestWeightDifference(fresh, last.out);
+    EXPECT_GT(lastMoved, 1e-4);
+    EXPECT_LT(largestWeightDifference(fresh, slow.out), 1e-3 * lastMoved);
     removeOutputs(last);
     removeOutputs(slow);
 }
@@ -140,13 +140,9 @@ TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
     };
     const TrainOptions off = trained("lighthouse_trainer_irradiance_off", 0.0);
     const TrainOptions strong = trained("lighthouse_trainer_irradiance_strong", 4.0);
-    LighthouseNet a = loadModel(off.out, torch::Device(torch::kCPU));
-    LighthouseNet b = loadModel(strong.out, torch::Device(torch::kCPU));
-    const auto pb = b->named_parameters();
-    double largest = 0;
-    for (const auto& p : a->named_parameters())
-        largest = std::max(largest, (p.value() - pb[p.key()]).abs().max().item<double>());
-    EXPECT_GT(largest, 1e-6) << "the irradiance weight changed nothing";
+    LighthouseNet offModel = loadModel(off.out, torch::Device(torch::kCPU));
+    EXPECT_GT(largestWeightDifference(offModel, strong.out), 1e-6)
+        << "the irradiance weight changed nothing";
     removeOutputs(off);
     removeOutputs(strong);
     TrainOptions negative = options("lighthouse_trainer_irradiance_negative");
