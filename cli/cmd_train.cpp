@@ -58,6 +58,10 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "Weight of the diffuse-irradiance loss (the light each axis-facing diffuse "
                     "patch receives) beside the per-pixel envmap losses")
         ->capture_default_str();
+    cmd->add_option("--envmap-mse-weight", o->envmapSquaredWeight,
+                    "Weight of the squared sRGB error of envmaps (what PSNR scores) beside the L1 "
+                    "losses; 0: off")
+        ->capture_default_str();
     cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")
         ->capture_default_str();
     cmd->add_option("--validation-scenes", o->validationScenes,

@@ -35,6 +35,11 @@ torch::Tensor imageLoss(const torch::Tensor& predictedLinear, const torch::Tenso
     return loss;
 }
 
+torch::Tensor squaredImageLoss(const torch::Tensor& predictedLinear,
+                               const torch::Tensor& targetLinear) {
+    return (srgbEncodeTensor(predictedLinear) - srgbEncodeTensor(targetLinear)).square().mean();
+}
+
 SpectralConv2dImpl::SpectralConv2dImpl(int in, int out, int s) : stride(s) {
     weight =
         register_parameter("weight", torch::randn({out, in, 4, 4}) * std::sqrt(2.0 / (in * 16)));

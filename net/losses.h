@@ -12,6 +12,13 @@ namespace lh::net {
 
 torch::Tensor imageLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
 
+// Squared-error image loss: the mean squared difference of sRGB-encoded clamp(linear, 0, 1),
+// exactly the quantity PSNR = -10 log10(loss) scores. Where the network cannot tell what an
+// unseen wall holds, imageLoss's L1 pulls towards the median of the possibilities; this loss
+// pulls towards their mean, which is what PSNR rewards.
+torch::Tensor squaredImageLoss(const torch::Tensor& predictedLinear,
+                               const torch::Tensor& targetLinear);
+
 // HDR image loss: mean |ln(1 + pred) - ln(1 + target)| over pixels and channels, on linear
 // radiance. Unlike imageLoss it sees how bright a lamp or window is (imageLoss clamps at 1).
 torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);

@@ -48,6 +48,8 @@ void TrainOptions::validate() const {
         throw InputError("--average-decay must be in [0, 1)");
     if (!(irradianceWeight >= 0 && irradianceWeight <= 100))
         throw InputError("--irradiance-weight must be in [0, 100]");
+    if (!(envmapSquaredWeight >= 0 && envmapSquaredWeight <= 100))
+        throw InputError("--envmap-mse-weight must be in [0, 100]");
     if (batch % distributed.worldSize != 0)
         throw InputError(
             "--batch " + std::to_string(batch) + " must be a multiple of the world size " +
@@ -462,7 +464,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     progress << "train: image loss: "
              << (vgg ? "VGG-19 perceptual (" + o.vggWeights + ")"
                      : std::string("L1 + gradients (substitute for VGG-19)"))
-             << "\n";
+             << "; envmaps also " << o.irradianceWeight << " x irradiance";
+    if (o.envmapSquaredWeight > 0) progress << ", " << o.envmapSquaredWeight << " x squared sRGB";
+    progress << "\n";
     const auto lossOf = [&](const torch::Tensor& predicted, const torch::Tensor& target) {
         return vgg ? (*vgg)(predicted, target) : imageLoss(predicted, target);
     };
@@ -522,6 +526,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                     envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) +
                               hdrImageLoss(rendered, ex.envmaps[k]) +
                               o.irradianceWeight * irradianceLoss(rendered, ex.envmaps[k]);
+                    if (o.envmapSquaredWeight > 0)
+                        envLoss = envLoss +
+                                  o.envmapSquaredWeight * squaredImageLoss(rendered, ex.envmaps[k]);
                     if (k == e) env = rendered;
                 }
                 const auto& gt = ex.envmaps[e];

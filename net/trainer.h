@@ -62,6 +62,10 @@ struct TrainOptions {
     // Its relative error is 0.3-1 where a model misses the lamps, about the size of the
     // per-pixel losses; 0.5 keeps those in charge of where things are.
     double irradianceWeight = 0.5;
+    // Weight of the squared sRGB error of envmaps (net/losses.h squaredImageLoss, the PSNR's
+    // own quantity) beside the L1 losses; 0: off. Its values are ~0.03 where L1's are ~0.15,
+    // so a weight of a few units is needed to move the L1's median towards the mean.
+    double envmapSquaredWeight = 0.0;
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

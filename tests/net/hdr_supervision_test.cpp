@@ -10,6 +10,8 @@
 #include "tests/net/net_test_scenes.h"
 #include "vdb/mpi.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace lh::net {
@@ -55,6 +57,27 @@ TEST(Losses, HdrImageLossIsZeroOnIdenticalInputsAndSeesBrightness) {
     const auto dim = torch::full_like(a, 1.0);
     EXPECT_NEAR(imageLoss(dim, a).item<double>(), 0.0, 1e-6);
     EXPECT_NEAR(hdrImageLoss(dim, a).item<double>(), std::log(51.0) - std::log(2.0), 1e-5);
+}
+
+TEST(Losses, SquaredImageLossIsWhatPsnrScores) {
+    // Zero on identical images, 1 between black and white (clamped: a lamp of 50 is white),
+    // and on any pair 10^(-PSNR / 10) of image/metrics.h's PSNR.
+    const auto black = torch::zeros({1, 3, 4, 8});
+    EXPECT_EQ(squaredImageLoss(black, black).item<double>(), 0.0);
+    EXPECT_NEAR(squaredImageLoss(black, torch::full_like(black, 50.0)).item<double>(), 1.0, 1e-6);
+    ImageRGB a(16, 8), b(16, 8);
+    for (int r = 0; r < 8; ++r)
+        for (int c = 0; c < 16; ++c)
+            for (int ch = 0; ch < 3; ++ch) {
+                a.at(c, r)[ch] = 0.05f * float((c + 2 * r + ch) % 11);
+                b.at(c, r)[ch] = 0.04f * float((3 * c + r) % 13) + (c == 5 ? 20.0f : 0.0f);
+            }
+    const double loss =
+        squaredImageLoss(imageToTensor(a).to(torch::kFloat64), imageToTensor(b).to(torch::kFloat64))
+            .item<double>();
+    // To 1e-5 relative: the loss's sRGB curve keeps its derivative finite at 0 by an offset of
+    // 1e-6 inside the power.
+    EXPECT_NEAR(loss, std::pow(10.0, -psnr(a, b) / 10.0), 1e-5 * loss);
 }
 
 TEST(Losses, AxisIrradianceOfAConstantEnvmapIsPiTimesItsRadiance) {

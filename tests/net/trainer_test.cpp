@@ -150,6 +150,33 @@ TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, TheEnvmapSquaredErrorWeightSteersTraining) {
+    // As the irradiance weight: off and strong give different weights; a negative weight and
+    // one above 100 are refused.
+    std::ostringstream log;
+    const auto trained = [&](const std::string& name, double weight) {
+        TrainOptions o = options(name);
+        o.averageDecay = 0.0;
+        o.halfModel = false;
+        o.envmapSquaredWeight = weight;
+        train(o, log);
+        return o;
+    };
+    const TrainOptions off = trained("lighthouse_trainer_squared_off", 0.0);
+    const TrainOptions strong = trained("lighthouse_trainer_squared_strong", 20.0);
+    LighthouseNet offModel = loadModel(off.out, torch::Device(torch::kCPU));
+    EXPECT_GT(largestWeightDifference(offModel, strong.out), 1e-6)
+        << "the squared-error weight changed nothing";
+    EXPECT_NE(log.str().find("20 x squared sRGB"), std::string::npos) << log.str();
+    removeOutputs(off);
+    removeOutputs(strong);
+    TrainOptions negative = options("lighthouse_trainer_squared_negative");
+    negative.envmapSquaredWeight = -1.0;
+    EXPECT_THROW(negative.validate(), InputError);
+    negative.envmapSquaredWeight = 101.0;
+    EXPECT_THROW(negative.validate(), InputError);
+}
+
 TEST_F(TrainerTest, DirectSupervisionUsesTheOracleAndTheDepth) {
     std::ostringstream log;
     TrainOptions o = options("lighthouse_trainer_direct");
