@@ -84,30 +84,32 @@ std::string padded(const std::string& text, std::size_t width) {
     return text + std::string(columns < width ? width - columns : 1, ' ');
 }
 
-// One row of the table: label, then PSNR, RGB angle, log-luminance RMSE, irradiance error.
-// Irradiance integrates the whole sphere, so the observed row has "-" there.
+// One row of the table: label, then PSNR, RGB angle, log-luminance RMSE, irradiance error,
+// mean radiance ratio. The last two are over the whole sphere, so the observed row has "-".
 void printRow(const std::string& label, const std::string& psnr, const std::string& angle,
-              const std::string& logLuminance, const std::string& irradiance) {
+              const std::string& logLuminance, const std::string& irradiance,
+              const std::string& radianceRatio) {
     std::cout << padded(label, 18) << padded(psnr, 22) << padded(angle, 26)
-              << padded(logLuminance, 24) << irradiance << "\n";
+              << padded(logLuminance, 24) << padded(irradiance, 24) << radianceRatio << "\n";
 }
 
 void printHeader() {
     printRow("", "PSNR (dB)", "RGB angular error (deg)", "log-luminance RMSE",
-             "irradiance rel. error");
+             "irradiance rel. error", "radiance ratio");
 }
 
 void compareSingle(const CompareOptions& o) {
     const EnvmapMetrics m = compareFiles(o.pred, o.gt, o.mask);
     printHeader();
     printRow("all content", formatMetric(m.psnrAll), formatMetric(m.angularAll),
-             formatMetric(m.logLuminanceAll), formatMetric(m.irradianceError));
+             formatMetric(m.logLuminanceAll), formatMetric(m.irradianceError),
+             formatMetric(m.radianceRatio));
     if (o.mask.empty()) return;
     if (std::isnan(m.psnrObserved))
         std::cout << padded("observed content", 18) << "no observed pixels in '" << o.mask << "'\n";
     else
         printRow("observed content", formatMetric(m.psnrObserved), formatMetric(m.angularObserved),
-                 formatMetric(m.logLuminanceObserved), "-");
+                 formatMetric(m.logLuminanceObserved), "-", "-");
 }
 
 void requireDirectory(const std::string& path, const std::string& what) {
@@ -164,12 +166,13 @@ void writeCsv(AtomicOutput& out, const std::vector<EnvmapPair>& pairs,
     {
         std::ofstream file(out.tempPath());
         file << "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,"
-                "log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error\n";
+                "log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio\n";
         for (std::size_t i = 0; i < pairs.size(); ++i) {
             const EnvmapMetrics& m = metrics[i];
             file << csvField(pairs[i].relative);
-            for (double v : {m.psnrAll, m.angularAll, m.psnrObserved, m.angularObserved,
-                             m.logLuminanceAll, m.logLuminanceObserved, m.irradianceError})
+            for (double v :
+                 {m.psnrAll, m.angularAll, m.psnrObserved, m.angularObserved, m.logLuminanceAll,
+                  m.logLuminanceObserved, m.irradianceError, m.radianceRatio})
                 file << "," << formatNumber("%.8g", v);
             file << "\n";
         }
@@ -197,7 +200,7 @@ void compareBatch(const CompareOptions& o) {
     const int progressStep = std::max(1, total / 10);
     std::vector<EnvmapMetrics> metrics;
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
-    std::vector<double> logLuminanceAll, logLuminanceObserved, irradiance;
+    std::vector<double> logLuminanceAll, logLuminanceObserved, irradiance, radianceRatio;
     int withMask = 0;
     for (const EnvmapPair& p : pairs) {
         const EnvmapMetrics m = compareFiles(p.pred, p.gt, p.mask);
@@ -206,6 +209,7 @@ void compareBatch(const CompareOptions& o) {
         angularAll.push_back(m.angularAll);
         logLuminanceAll.push_back(m.logLuminanceAll);
         irradiance.push_back(m.irradianceError);
+        radianceRatio.push_back(m.radianceRatio);
         if (!p.mask.empty()) {
             ++withMask;
             psnrObserved.push_back(m.psnrObserved);
@@ -220,14 +224,14 @@ void compareBatch(const CompareOptions& o) {
 
     std::cout << total << " envmaps, " << withMask << " with an observed mask (mean ± std)\n";
     printHeader();
-    printRow("all content", formatMeanStd(meanStd(psnrAll), total),
-             formatMeanStd(meanStd(angularAll), total),
-             formatMeanStd(meanStd(logLuminanceAll), total),
-             formatMeanStd(meanStd(irradiance), total));
+    printRow(
+        "all content", formatMeanStd(meanStd(psnrAll), total),
+        formatMeanStd(meanStd(angularAll), total), formatMeanStd(meanStd(logLuminanceAll), total),
+        formatMeanStd(meanStd(irradiance), total), formatMeanStd(meanStd(radianceRatio), total));
     if (withMask > 0)
         printRow("observed content", formatMeanStd(meanStd(psnrObserved), withMask),
                  formatMeanStd(meanStd(angularObserved), withMask),
-                 formatMeanStd(meanStd(logLuminanceObserved), withMask), "-");
+                 formatMeanStd(meanStd(logLuminanceObserved), withMask), "-", "-");
     if (csv) std::cout << "per-envmap rows: " << csv->finalPath() << "\n";
 }
 
@@ -237,8 +241,8 @@ void addCompareCommand(CLI::App& app) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* cmd = app.add_subcommand(
         "compare",
-        "PSNR, RGB angular error, log-luminance RMSE and irradiance error of predicted "
-        "envmaps against ground truth (docs/metrics.md)");
+        "PSNR, RGB angular error, log-luminance RMSE, irradiance error and mean radiance "
+        "ratio of predicted envmaps against ground truth (docs/metrics.md)");
     cmd->add_option("pred", o->pred, "Predicted envmap (.exr), or PRED_DIR with --batch")
         ->required();
     cmd->add_option("gt", o->gt, "Ground-truth envmap (.exr), or GT_DIR with --batch")->required();

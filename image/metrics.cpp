@@ -1,6 +1,7 @@
 #include "image/metrics.h"
 
 #include "core/errors.h"
+#include "image/envmap_layout.h"
 #include "image/image_io.h"
 #include "image/irradiance_weights.h"
 
@@ -149,6 +150,26 @@ double logLuminanceRmse(const ImageRGB& pred, const ImageRGB& gt,
     return used == 0 ? kNaN : std::sqrt(squares / double(used));
 }
 
+double meanRadianceRatio(const ImageRGB& pred, const ImageRGB& gt) {
+    checkComparable(pred, gt, nullptr);
+    // Mean of Y over the sphere: each row weighted by sin(phi), the solid angle of its pixels
+    // up to a factor common to all.
+    const auto meanLuminance = [](const ImageRGB& image) {
+        double sum = 0.0, weight = 0.0;
+        for (int r = 0; r < image.height; ++r) {
+            const double sinPhi = std::sin(envmapPolarAngle(r + 0.5, image.height));
+            double row = 0.0;
+            for (int c = 0; c < image.width; ++c) row += luminance(image.at(c, r));
+            sum += sinPhi * row;
+            weight += sinPhi * image.width;
+        }
+        return sum / weight;
+    };
+    const double truth = meanLuminance(gt);
+    if (!(truth > kMinIrradiance / (4.0 * M_PI))) return kNaN;
+    return meanLuminance(pred) / truth;
+}
+
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
                              const std::vector<std::uint8_t>* mask) {
     EnvmapMetrics m{psnr(pred, gt),
@@ -163,6 +184,7 @@ EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
         m.angularObserved = angularErrorDegrees(pred, gt, mask);
         m.logLuminanceObserved = logLuminanceRmse(pred, gt, mask);
     }
+    m.radianceRatio = meanRadianceRatio(pred, gt);
     return m;
 }
 

@@ -62,6 +62,13 @@ double irradianceError(const ImageRGB& pred, const ImageRGB& gt);
 double logLuminanceRmse(const ImageRGB& pred, const ImageRGB& gt,
                         const std::vector<std::uint8_t>* mask = nullptr);
 
+// How much light the prediction holds against the truth: the ratio of their mean luminance
+// over the sphere (each pixel weighted by its solid angle, negative luminance counted as 0).
+// 1 = the right total energy, 0.5 = half the truth's; it says nothing of where the light is.
+// PSNR (clamped) cannot tell a lamp of 2 from one of 200; this can. NaN when the truth's mean
+// luminance is at most kMinIrradiance / (4 pi) (a black ground truth).
+double meanRadianceRatio(const ImageRGB& pred, const ImageRGB& gt);
+
 // The four numbers the paper reports per envmap, and the two HDR ones. The observed ones
 // are NaN without a mask. Irradiance is an integral over the whole sphere, so it has no
 // observed variant.
@@ -73,6 +80,7 @@ struct EnvmapMetrics {
     double irradianceError = std::numeric_limits<double>::quiet_NaN();       // ratio
     double logLuminanceAll = std::numeric_limits<double>::quiet_NaN();       // ln units
     double logLuminanceObserved = std::numeric_limits<double>::quiet_NaN();  // ln units
+    double radianceRatio = std::numeric_limits<double>::quiet_NaN();         // ratio
 };
 
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,

@@ -68,7 +68,8 @@ CsvRow parseCsvRow(const std::string& line, const std::string& where) {
 
 std::string evalCsvHeader() {
     return "example,envmap,method,psnr_all_db,angular_all_deg,psnr_observed_db,"
-           "angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error\n";
+           "angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,"
+           "radiance_ratio\n";
 }
 
 std::string evalCsvRow(const std::string& example, std::size_t envmap, const std::string& method,
@@ -89,6 +90,7 @@ void addScores(MethodScores& s, const MetricValues& v) {
     s.logLuminanceAll.push_back(v[4]);
     s.logLuminanceObserved.push_back(v[5]);
     s.irradianceError.push_back(v[6]);
+    s.radianceRatio.push_back(v[7]);
 }
 
 std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::size_t scenes,
@@ -96,18 +98,19 @@ std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::siz
     std::ostringstream md;
     md << "| method | PSNR all (dB) | angular all (deg) | PSNR observed (dB) | angular observed "
           "(deg) "
-          "| log-lum RMSE all | log-lum RMSE observed | irradiance rel. error |\n"
-       << "|---|---|---|---|---|---|---|---|\n";
+          "| log-lum RMSE all | log-lum RMSE observed | irradiance rel. error | radiance ratio |\n"
+       << "|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& m : methods)
         md << "| " << m.name << " | " << cell(m.psnrAll, 2) << " | " << cell(m.angularAll, 2)
            << " | " << cell(m.psnrObserved, 2) << " | " << cell(m.angularObserved, 2) << " | "
            << cell(m.logLuminanceAll, 3) << " | " << cell(m.logLuminanceObserved, 3) << " | "
-           << cell(m.irradianceError, 3) << " |\n";
+           << cell(m.irradianceError, 3) << " | " << cell(m.radianceRatio, 2) << " |\n";
     md << "\n"
        << (methods.empty() ? 0 : methods[0].psnrAll.size()) << " envmaps (" << scenes
        << " scenes) of `" << data << "`, model config `" << configName << "`; mean +- std. "
        << "Log-lum RMSE: of ln(1 + luminance); irradiance rel. error: |E_pred - E_gt| / E_gt at "
-       << "the six axis normals (docs/metrics.md).\n";
+       << "the six axis normals; radiance ratio: mean luminance over the sphere, predicted / "
+       << "true (1 = the right total light; docs/metrics.md).\n";
     return md.str();
 }
 

@@ -17,7 +17,7 @@ namespace lh::net {
 
 // Columns of metrics.csv after example, envmap and method, in order: PSNR all, angular all,
 // PSNR observed, angular observed, log-lum RMSE all, log-lum RMSE observed, irradiance error.
-using MetricValues = std::array<double, 7>;
+using MetricValues = std::array<double, 8>;
 
 // Contact sheet: rows of ground truth | predictions, 90 pixels high, the first 12 envmaps.
 constexpr int kEvalSheetTileHeight = 90;

@@ -148,7 +148,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
                 const MetricValues values = {metrics.psnrAll,         metrics.angularAll,
                                              metrics.psnrObserved,    metrics.angularObserved,
                                              metrics.logLuminanceAll, metrics.logLuminanceObserved,
-                                             metrics.irradianceError};
+                                             metrics.irradianceError, metrics.radianceRatio};
                 addScores(report.methods[m], values);
                 csv << evalCsvRow(example, e, report.methods[m].name, values, o.shard.active);
             }

@@ -43,7 +43,7 @@ struct EvalOptions {
 struct MethodScores {
     std::string name;
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
-    std::vector<double> logLuminanceAll, logLuminanceObserved, irradianceError;
+    std::vector<double> logLuminanceAll, logLuminanceObserved, irradianceError, radianceRatio;
 };
 
 struct EvalReport {

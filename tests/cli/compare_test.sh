@@ -58,15 +58,15 @@ value_of() { awk -v label="$1" -v column="$2" '$1 == label { print $column }'; }
 
 # ---- single comparisons ----------------------------------------------------------------------
 num="[0-9]+[.][0-9]{2}"
-ok --stdout "^ +PSNR [(]dB[)] +RGB angular error [(]deg[)] +log-luminance RMSE +irradiance rel[.] error$" \
-   --stdout "^all content +inf +0[.]00 +0[.]00 +0[.]00$" -- "$lh" compare a_000.exr a_000.exr
-ok --stdout "^all content +$num +$num +$num +$num$" -- "$lh" compare a_000.exr a_001.exr
+ok --stdout "^ +PSNR [(]dB[)] +RGB angular error [(]deg[)] +log-luminance RMSE +irradiance rel[.] error +radiance ratio$" \
+   --stdout "^all content +inf +0[.]00 +0[.]00 +0[.]00 +1[.]00$" -- "$lh" compare a_000.exr a_000.exr
+ok --stdout "^all content +$num +$num +$num +$num +$num$" -- "$lh" compare a_000.exr a_001.exr
 # Every radiance doubled (the same volume at exposure 2): the irradiance is off by exactly
-# the truth's own size, the RGB angle not at all.
+# the truth's own size, the mean radiance is twice the truth's, the RGB angle is unchanged.
 "$lh" edit ../example.vdb --scale-radiance 2 -o bright.vdb >/dev/null 2>&1 &&
     "$lh" render-envmap bright.vdb --at 0,0,1 --size 32x16 -o bright.exr 2>/dev/null ||
     { echo "edit/render-envmap failed"; exit 1; }
-ok --stdout "^all content +$num +0[.]00 +$num +1[.]00$" -- "$lh" compare bright.exr a_000.exr
+ok --stdout "^all content +$num +0[.]00 +$num +1[.]00 +2[.]00$" -- "$lh" compare bright.exr a_000.exr
 out=$("$lh" compare a_000.exr a_001.exr --mask mask_all.png 2>&1)
 psnr_all=$(value_of all 3 <<<"$out")
 [ "$psnr_all" != inf ] && [ -n "$psnr_all" ] || fail "different envmaps: PSNR '$psnr_all'"
@@ -75,7 +75,7 @@ psnr_all=$(value_of all 3 <<<"$out")
     [ "$(value_of all 5 <<<"$out")" = "$(value_of observed 5 <<<"$out")" ] ||
     fail "a mask of every pixel must reproduce 'all content': $out"
 out=$("$lh" compare a_000.exr a_001.exr --mask mask_left.png 2>&1)
-grep -Eq "^observed content +$num +$num +$num +-$" <<<"$out" ||
+grep -Eq "^observed content +$num +$num +$num +- +-$" <<<"$out" ||
     fail "half mask: no observed row: $out"
 [ "$(value_of observed 3 <<<"$out")" != "$psnr_all" ] || fail "half mask changed nothing: $out"
 ok --stdout "^observed content +no observed pixels" -- "$lh" compare a_000.exr a_001.exr --mask mask_none.png
@@ -99,11 +99,11 @@ cp a_002.exr pred/scene_b/env_0.exr
 cp a_000.exr pred/scene_b/env_1.exr
 
 ok --stdout "^3 envmaps, 1 with an observed mask" \
-   --stdout "^all content +$num ± $num +$num ± $num +$num ± $num +$num ± $num$" \
-   --stdout "^observed content +$num ± 0[.]00 +$num ± 0[.]00 +$num ± 0[.]00 +-$" \
+   --stdout "^all content +$num ± $num +$num ± $num +$num ± $num +$num ± $num +$num ± $num$" \
+   --stdout "^observed content +$num ± 0[.]00 +$num ± 0[.]00 +$num ± 0[.]00 +- +-$" \
    --file rows.csv -- "$lh" compare --batch pred gt --csv rows.csv
 if [ -s rows.csv ]; then
-    [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error" ] ||
+    [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio" ] ||
         fail "CSV header: $(head -n 1 rows.csv)"
     [ "$(tail -n +2 rows.csv | cut -d, -f1 | tr '\n' ' ')" = \
       "scene_a/env_0.exr scene_b/env_0.exr scene_b/env_1.exr " ] || fail "CSV rows: $(cat rows.csv)"

@@ -289,6 +289,27 @@ TEST(HdrMetrics, LogLuminanceRmseIsARootMeanSquareAndHonoursTheMask) {
     EXPECT_TRUE(std::isnan(logLuminanceRmse(pred, gt, &none)));
 }
 
+TEST(HdrMetrics, MeanRadianceRatioWeighsPixelsBySolidAngle) {
+    const ImageRGB gt = uniform(64, 32, 0.5f, 0.5f, 0.5f);
+    EXPECT_NEAR(meanRadianceRatio(gt, gt), 1.0, 1e-12);
+    EXPECT_NEAR(meanRadianceRatio(uniform(64, 32, 0.25f, 0.25f, 0.25f), gt), 0.5, 1e-9);
+    // Luminance, not RGB: pure blue of 1 has Y = 0.0722.
+    EXPECT_NEAR(meanRadianceRatio(uniform(64, 32, 0.f, 0.f, 1.f), gt), 0.0722 / 0.5, 1e-6);
+    // The same lamp (one pixel of 1000) on the horizon row and on the top row: the top row's
+    // pixels are smaller (sin(phi) of its centre against about 1), so it adds less light.
+    ImageRGB horizon = gt, top = gt;
+    std::fill_n(horizon.at(10, 16), 3, 1000.f);
+    std::fill_n(top.at(10, 0), 3, 1000.f);
+    const double horizonExtra = meanRadianceRatio(horizon, gt) - 1.0,
+                 topExtra = meanRadianceRatio(top, gt) - 1.0;
+    EXPECT_GT(horizonExtra, 0.0);
+    EXPECT_NEAR(topExtra / horizonExtra, std::sin(M_PI * 0.5 / 32) / std::sin(M_PI * 16.5 / 32),
+                1e-6);
+    // A black truth: no ratio.
+    EXPECT_TRUE(std::isnan(meanRadianceRatio(gt, ImageRGB(64, 32))));
+    EXPECT_THROW(meanRadianceRatio(uniform(4, 2, 1.f, 1.f, 1.f), gt), InputError);
+}
+
 TEST(HdrMetrics, CompareEnvmapsFillsTheHdrFields) {
     const ImageRGB gt = uniform(32, 16, 0.5f, 0.5f, 0.5f);
     const ImageRGB pred = uniform(32, 16, 1.f, 1.f, 1.f);
@@ -300,6 +321,7 @@ TEST(HdrMetrics, CompareEnvmapsFillsTheHdrFields) {
     const EnvmapMetrics masked = compareEnvmaps(pred, gt, &none);
     EXPECT_TRUE(std::isnan(masked.logLuminanceObserved));
     EXPECT_EQ(masked.irradianceError, all.irradianceError);
+    EXPECT_NEAR(all.radianceRatio, 2.0, 1e-9);
     EXPECT_THROW(irradianceError(uniform(4, 2, 1.f, 1.f, 1.f), gt), InputError);
 }
 
