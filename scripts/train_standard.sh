@@ -8,8 +8,10 @@
 #      $WORK);
 #   3. the moving average of the weights in half precision (--half), written from the final
 #      checkpoint;
-#   4. 500 more iterations on 1200 new scenes (seeds 2000-3199), from step 3's model, whose
-#      half-precision moving average is the committed model, copied to models/standard.pt.
+#   4. 500 more iterations on 1200 new scenes (seeds 2000-3199), from step 3's model;
+#   5. step 4's run resumed with the squared sRGB envmap loss (--envmap-mse-weight 4): to
+#      iteration 1300, then to 1900. Its half-precision moving average is the committed
+#      model, copied to models/standard.pt.
 # The bundled model was trained while the code gained its last losses and augmentations
 # (models/README.md says at which iterations); with today's code this is one run.
 # WORK (default /work/lighthouse-train) holds the data, the checkpoint and the logs.
@@ -36,10 +38,14 @@ train=(--threads 1 train --data "$work/data/train_v3" --config standard
   --envmap-size 120x60 --oracle-levels 5 --oracle-res 64 -o "$work/data/train_v3b"
 finetune=(--threads 1 train --data "$work/data/train_v3b" --config standard
           --init "$work/v3_half.pt" -o "$work/standard.pt"
-          --checkpoint "$work/standard.checkpoint" --iterations 500 --lr 1.5e-4 --seed 7
-          --validate-every 250 --validation-scenes 6 --checkpoint-every 100 --log-every 25)
-"$bin" "${finetune[@]}"
-"$bin" "${finetune[@]}" --half
+          --checkpoint "$work/standard.checkpoint" --lr 1.5e-4 --seed 7
+          --validation-scenes 6 --checkpoint-every 100 --log-every 25)
+"$bin" "${finetune[@]}" --iterations 500 --validate-every 250
+# Step 5: each resume moves the learning rate's drop to 80% of its new --iterations.
+squared=(--envmap-mse-weight 4)
+"$bin" "${finetune[@]}" "${squared[@]}" --iterations 1300 --validate-every 400
+"$bin" "${finetune[@]}" "${squared[@]}" --iterations 1900 --validate-every 300
+"$bin" "${finetune[@]}" "${squared[@]}" --iterations 1900 --validate-every 300 --half
 cp "$work/standard.pt" models/standard.pt
 cp "$work/v3.pt.csv" models/standard_training_log.csv
 cp "$work/v3.pt.png" models/standard_training_curves.png
