@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 namespace lh::net {
@@ -66,6 +67,27 @@ protected:
     }
     static double largestWeightDifference(const LighthouseNet& a, const std::string& modelPath) {
         return largestWeightDifference(a, loadModel(modelPath, torch::Device(torch::kCPU)));
+    }
+    // Trains two short runs of the same seed and data, `off` and `on` (full precision, no
+    // moving average), whose options differ only by what `set(options, value)` sets, and
+    // returns the largest difference of their weights; their files are removed.
+    double weightChangeOf(const std::string& name, double off, double on,
+                          const std::function<void(TrainOptions&, double)>& set,
+                          std::ostream& log) const {
+        const auto trained = [&](const std::string& suffix, double value) {
+            TrainOptions o = options(name + suffix);
+            o.averageDecay = 0.0;
+            o.halfModel = false;
+            set(o, value);
+            train(o, log);
+            return o;
+        };
+        const TrainOptions a = trained("_off", off), b = trained("_on", on);
+        const double change =
+            largestWeightDifference(loadModel(a.out, torch::Device(torch::kCPU)), b.out);
+        removeOutputs(a);
+        removeOutputs(b);
+        return change;
     }
     static std::string readText(const std::string& path) {
         std::ifstream in(path);
@@ -130,46 +152,26 @@ TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
     // The same seed and data with the irradiance loss off and strong: the envmap stage's
     // gradients differ, so do the weights; a negative weight is refused.
     std::ostringstream log;
-    const auto trained = [&](const std::string& name, double weight) {
-        TrainOptions o = options(name);
-        o.averageDecay = 0.0;
-        o.halfModel = false;
-        o.irradianceWeight = weight;
-        train(o, log);
-        return o;
-    };
-    const TrainOptions off = trained("lighthouse_trainer_irradiance_off", 0.0);
-    const TrainOptions strong = trained("lighthouse_trainer_irradiance_strong", 4.0);
-    LighthouseNet offModel = loadModel(off.out, torch::Device(torch::kCPU));
-    EXPECT_GT(largestWeightDifference(offModel, strong.out), 1e-6)
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_irradiance", 0.0, 4.0,
+                  [](TrainOptions& o, double w) { o.irradianceWeight = w; }, log),
+              1e-6)
         << "the irradiance weight changed nothing";
-    removeOutputs(off);
-    removeOutputs(strong);
     TrainOptions negative = options("lighthouse_trainer_irradiance_negative");
     negative.irradianceWeight = -1.0;
     EXPECT_THROW(negative.validate(), InputError);
 }
 
 TEST_F(TrainerTest, TheEnvmapSquaredErrorWeightSteersTraining) {
-    // As the irradiance weight: off and strong give different weights; a negative weight and
-    // one above 100 are refused.
+    // As the irradiance weight: off and strong give different weights, and the log says the
+    // term is on; a negative weight and one above 100 are refused.
     std::ostringstream log;
-    const auto trained = [&](const std::string& name, double weight) {
-        TrainOptions o = options(name);
-        o.averageDecay = 0.0;
-        o.halfModel = false;
-        o.envmapSquaredWeight = weight;
-        train(o, log);
-        return o;
-    };
-    const TrainOptions off = trained("lighthouse_trainer_squared_off", 0.0);
-    const TrainOptions strong = trained("lighthouse_trainer_squared_strong", 20.0);
-    LighthouseNet offModel = loadModel(off.out, torch::Device(torch::kCPU));
-    EXPECT_GT(largestWeightDifference(offModel, strong.out), 1e-6)
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_squared", 0.0, 20.0,
+                  [](TrainOptions& o, double w) { o.envmapSquaredWeight = w; }, log),
+              1e-6)
         << "the squared-error weight changed nothing";
     EXPECT_NE(log.str().find("20 x squared sRGB"), std::string::npos) << log.str();
-    removeOutputs(off);
-    removeOutputs(strong);
     TrainOptions negative = options("lighthouse_trainer_squared_negative");
     negative.envmapSquaredWeight = -1.0;
     EXPECT_THROW(negative.validate(), InputError);
