@@ -10,8 +10,9 @@
 #      checkpoint;
 #   4. 500 more iterations on 1200 new scenes (seeds 2000-3199), from step 3's model;
 #   5. step 4's run resumed with the squared sRGB envmap loss (--envmap-mse-weight 4): to
-#      iteration 1300, then to 1900. Its half-precision moving average is the committed
-#      model, copied to models/standard.pt.
+#      iteration 1300, then to 1900, written in half precision;
+#   6. 1700 iterations on 1200 newer scenes (seeds 3200-4399), fine-tuned from step 5's model.
+#      Its half-precision moving average is the committed model, copied to models/standard.pt.
 # The bundled model was trained while the code gained its last losses and augmentations
 # (models/README.md says at which iterations); with today's code this is one run.
 # WORK (default /work/lighthouse-train) holds the data, the checkpoint and the logs.
@@ -46,8 +47,19 @@ squared=(--envmap-mse-weight 4)
 "$bin" "${finetune[@]}" "${squared[@]}" --iterations 1300 --validate-every 400
 "$bin" "${finetune[@]}" "${squared[@]}" --iterations 1900 --validate-every 300
 "$bin" "${finetune[@]}" "${squared[@]}" --iterations 1900 --validate-every 300 --half
-cp "$work/standard.pt" models/standard.pt
+
+"$bin" synth --split train --seed 3200 --count 1200 --envmaps 3 --size 192x144 \
+  --envmap-size 120x60 --oracle-levels 5 --oracle-res 64 -o "$work/data/train_v3c"
+step6=(--threads 1 train --data "$work/data/train_v3c" --config standard
+       --init "$work/standard.pt" --checkpoint "$work/step6.checkpoint" --iterations 1700
+       --lr 1.5e-4 --seed 9 --validate-every 300 --validation-scenes 6 --checkpoint-every 100
+       --log-every 25 --envmap-mse-weight 4)
+"$bin" "${step6[@]}" -o "$work/step6.pt"
+"$bin" "${step6[@]}" -o "$work/step6_half.pt" --half
+cp "$work/step6_half.pt" models/standard.pt
 cp "$work/v3.pt.csv" models/standard_training_log.csv
 cp "$work/v3.pt.png" models/standard_training_curves.png
 cp "$work/standard.pt.csv" models/standard_finetune_log.csv
 cp "$work/standard.pt.png" models/standard_finetune_curves.png
+cp "$work/step6.pt.csv" models/standard_step6_log.csv
+cp "$work/step6.pt.png" models/standard_step6_curves.png
