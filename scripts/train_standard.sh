@@ -22,25 +22,25 @@ bin=build/cli/lighthouse
 work=${WORK:-/work/lighthouse-train}
 iterations=${ITERATIONS:-3500}
 mkdir -p "$work"
+# Every training set: three envmaps and one 5 x 64^3 oracle volume per scene.
+scenes=(--envmaps 3 --size 192x144 --envmap-size 120x60 --oracle-levels 5 --oracle-res 64)
+progress=(--validation-scenes 6 --checkpoint-every 100 --log-every 25)
 
-"$bin" synth --split train --seed 0 --count 1988 --envmaps 3 --size 192x144 \
-  --envmap-size 120x60 --oracle-levels 5 --oracle-res 64 -o "$work/data/train_v3"
+"$bin" synth --split train --seed 0 --count 1988 "${scenes[@]}" -o "$work/data/train_v3"
 [ -f "$work/previous_standard.pt" ] ||
   git show fb252c4:models/standard.pt > "$work/previous_standard.pt"
 train=(--threads 1 train --data "$work/data/train_v3" --config standard
        --init "$work/previous_standard.pt"
        --checkpoint "$work/v3.checkpoint" --iterations "$iterations" --lr 3e-4 --seed 5
-       --validate-every 250 --validation-scenes 6 --checkpoint-every 100 --log-every 25)
+       --validate-every 250 "${progress[@]}")
 "$bin" "${train[@]}" -o "$work/v3.pt"
 # Resumes at the end: writes the model again, in half precision.
 "$bin" "${train[@]}" -o "$work/v3_half.pt" --half
 
-"$bin" synth --split train --seed 2000 --count 1200 --envmaps 3 --size 192x144 \
-  --envmap-size 120x60 --oracle-levels 5 --oracle-res 64 -o "$work/data/train_v3b"
+"$bin" synth --split train --seed 2000 --count 1200 "${scenes[@]}" -o "$work/data/train_v3b"
 finetune=(--threads 1 train --data "$work/data/train_v3b" --config standard
           --init "$work/v3_half.pt" -o "$work/standard.pt"
-          --checkpoint "$work/standard.checkpoint" --lr 1.5e-4 --seed 7
-          --validation-scenes 6 --checkpoint-every 100 --log-every 25)
+          --checkpoint "$work/standard.checkpoint" --lr 1.5e-4 --seed 7 "${progress[@]}")
 "$bin" "${finetune[@]}" --iterations 500 --validate-every 250
 # Step 5: each resume moves the learning rate's drop to 80% of its new --iterations.
 squared=(--envmap-mse-weight 4)
@@ -48,12 +48,10 @@ squared=(--envmap-mse-weight 4)
 "$bin" "${finetune[@]}" "${squared[@]}" --iterations 1900 --validate-every 300
 "$bin" "${finetune[@]}" "${squared[@]}" --iterations 1900 --validate-every 300 --half
 
-"$bin" synth --split train --seed 3200 --count 1200 --envmaps 3 --size 192x144 \
-  --envmap-size 120x60 --oracle-levels 5 --oracle-res 64 -o "$work/data/train_v3c"
+"$bin" synth --split train --seed 3200 --count 1200 "${scenes[@]}" -o "$work/data/train_v3c"
 step6=(--threads 1 train --data "$work/data/train_v3c" --config standard
        --init "$work/standard.pt" --checkpoint "$work/step6.checkpoint" --iterations 1700
-       --lr 1.5e-4 --seed 9 --validate-every 300 --validation-scenes 6 --checkpoint-every 100
-       --log-every 25 --envmap-mse-weight 4)
+       --lr 1.5e-4 --seed 9 --validate-every 300 "${progress[@]}" "${squared[@]}")
 "$bin" "${step6[@]}" -o "$work/step6.pt"
 "$bin" "${step6[@]}" -o "$work/step6_half.pt" --half
 cp "$work/step6_half.pt" models/standard.pt
