@@ -11,8 +11,10 @@
 #   4. 500 more iterations on 1200 new scenes (seeds 2000-3199), from step 3's model;
 #   5. step 4's run resumed with the squared sRGB envmap loss (--envmap-mse-weight 4): to
 #      iteration 1300, then to 1900, written in half precision;
-#   6. 1700 iterations on 1200 newer scenes (seeds 3200-4399), fine-tuned from step 5's model.
-#      Its half-precision moving average is the committed model, copied to models/standard.pt.
+#   6. 1700 iterations on 1200 newer scenes (seeds 3200-4399), fine-tuned from step 5's model;
+#   7. 1500 iterations on another 1200 (seeds 4400-5599) with the squared loss weighted 24,
+#      fine-tuned from step 6's model. Its half-precision moving average is the committed
+#      model, copied to models/standard.pt.
 # The bundled model was trained while the code gained its last losses and augmentations
 # (models/README.md says at which iterations); with today's code this is one run.
 # WORK (default /work/lighthouse-train) holds the data, the checkpoint and the logs.
@@ -54,10 +56,19 @@ step6=(--threads 1 train --data "$work/data/train_v3c" --config standard
        --lr 1.5e-4 --seed 9 --validate-every 300 "${progress[@]}" "${squared[@]}")
 "$bin" "${step6[@]}" -o "$work/step6.pt"
 "$bin" "${step6[@]}" -o "$work/step6_half.pt" --half
-cp "$work/step6_half.pt" models/standard.pt
+
+"$bin" synth --split train --seed 4400 --count 1200 "${scenes[@]}" -o "$work/data/train_v3d"
+step7=(--threads 1 train --data "$work/data/train_v3d" --config standard
+       --init "$work/step6_half.pt" --checkpoint "$work/step7.checkpoint" --iterations 1500
+       --lr 1.5e-4 --seed 11 --validate-every 300 "${progress[@]}" --envmap-mse-weight 24)
+"$bin" "${step7[@]}" -o "$work/step7.pt"
+"$bin" "${step7[@]}" -o "$work/step7_half.pt" --half
+cp "$work/step7_half.pt" models/standard.pt
 cp "$work/v3.pt.csv" models/standard_training_log.csv
 cp "$work/v3.pt.png" models/standard_training_curves.png
 cp "$work/standard.pt.csv" models/standard_finetune_log.csv
 cp "$work/standard.pt.png" models/standard_finetune_curves.png
 cp "$work/step6.pt.csv" models/standard_step6_log.csv
 cp "$work/step6.pt.png" models/standard_step6_curves.png
+cp "$work/step7.pt.csv" models/standard_step7_log.csv
+cp "$work/step7.pt.png" models/standard_step7_curves.png
