@@ -33,6 +33,7 @@ for round in $(seq "$rounds"); do
     echo "$ta $tb" | awk '{ printf "A %s  B %s  B/A %.4f\n", $1, $2, $2 / $1 }' | tee -a "$scratch/pairs"
   done
 done
+# Quartiles: the k-th smallest and the k-th largest ratio, k = floor(N/4) + 1.
 awk '{ print $6 }' "$scratch/pairs" | sort -n | awk '{ r[NR] = $1 } END {
   printf "B/A over %d pairs: median %.3f, quartiles %.3f and %.3f\n", NR, (r[int((NR + 1) / 2)] + r[int(NR / 2) + 1]) / 2,
-         r[int(NR / 4) + 1], r[int(3 * NR / 4)] }'
+         r[int(NR / 4) + 1], r[NR - int(NR / 4)] }'
