@@ -18,7 +18,8 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--val", o->validation,
                     "Held-out scenes for validation (default: the last 5% of --data)");
     cmd->add_option("--config", o->config,
-                    "standard (5 x 64^3 from 192x144, 32 planes, HDR), paper, or small")
+                    "standard (5 x 64^3 from 192x144, 32 planes, HDR), wide (standard with completion "
+                    "networks twice as wide), paper, or small")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->out,
                     "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")
@@ -30,6 +31,10 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--init", o->init,
                     "When no checkpoint exists: fine-tune from this model (same configuration) "
                     "with a fresh optimiser");
+    cmd->add_flag("--init-partial", o->initPartial,
+                  "With --init of another configuration: start from its parameters wherever name "
+                  "and shape match (a standard model's MPI network for --config wide), the rest "
+                  "fresh");
     cmd->add_option("--supervision", o->supervision,
                     "direct: also the oracle volume (oracle.vdb, synth --oracle-levels) and the "
                     "reference depth; "

@@ -49,6 +49,13 @@ NetConfig NetConfig::standard() {
     return c;
 }
 
+NetConfig NetConfig::wide() {
+    NetConfig c = standard();
+    c.name = "wide";
+    c.baseWidth = 8;
+    return c;
+}
+
 NetConfig NetConfig::paper() {
     NetConfig c;
     c.name = "paper";
@@ -67,10 +74,11 @@ NetConfig NetConfig::paper() {
 
 NetConfig NetConfig::byName(const std::string& name) {
     if (name == "standard") return standard();
+    if (name == "wide") return wide();
     if (name == "small") return small();
     if (name == "paper") return paper();
     throw InputError("unknown configuration '" + name +
-                     "' (expected 'standard', 'small' or 'paper')");
+                     "' (expected 'standard', 'wide', 'small' or 'paper')");
 }
 
 void NetConfig::validate() const {

@@ -1,7 +1,10 @@
-// Sizes of the prediction pipeline. Three named configurations share every line of code:
+// Sizes of the prediction pipeline. Four named configurations share every line of code:
 //   `standard` (the default): the paper's 5 x 64^3 volume from a 192x144 input with 32 planes,
 //              with a 2D MPI network over the plane-sweep volume and completion networks that
 //              run at 32^3 and are blended into the full-resolution cubes, HDR radiance;
+//   `wide`:    `standard` with completion networks of twice the channels (8 .. 128), the
+//              capacity the unseen walls, lamps and windows ask for; its MPI network has
+//              `standard`'s parameters, so it can start from a `standard` model;
 //   `paper`:   the paper's sizes and 3D networks throughout;
 //   `small`:   the first bundled model's sizes (64x48 input, 4 x 16^3, colours in [0, 1]).
 // Torch-free: the CLI and tests read it without libtorch.
@@ -43,7 +46,8 @@ struct NetConfig {
     static NetConfig small();
     static NetConfig paper();
     static NetConfig standard();
-    // "standard", "small" or "paper"; throws InputError otherwise.
+    static NetConfig wide();
+    // "standard", "wide", "small" or "paper"; throws InputError otherwise.
     static NetConfig byName(const std::string& name);
 
     // Throws InputError naming the bad size.

@@ -196,6 +196,26 @@ void copyWeights(LighthouseNet& to, LighthouseNet& from) {
     for (auto& b : to->named_buffers()) b.value().copy_(buffers[b.key()]);
 }
 
+MatchedWeights copyMatchingWeights(LighthouseNet& to, LighthouseNet& from) {
+    torch::NoGradGuard noGrad;
+    MatchedWeights m;
+    const auto copy = [&m](const torch::OrderedDict<std::string, torch::Tensor>& source,
+                           torch::OrderedDict<std::string, torch::Tensor> target) {
+        for (auto& t : target) {
+            ++m.tensors;
+            m.values += t.value().numel();
+            const torch::Tensor* s = source.find(t.key());
+            if (!s || !s->sizes().equals(t.value().sizes())) continue;
+            t.value().copy_(*s);
+            ++m.copied;
+            m.copiedValues += t.value().numel();
+        }
+    };
+    copy(from->named_parameters(), to->named_parameters());
+    copy(from->named_buffers(), to->named_buffers());
+    return m;
+}
+
 void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision) {
     torch::serialize::OutputArchive archive;
     archive.write("lighthouse_config", c10::IValue(net->config.toJson()));

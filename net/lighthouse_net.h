@@ -71,6 +71,14 @@ torch::Tensor cropCoarserLevel(const torch::Tensor& coarser, int coarserLevel);
 // Copies every parameter and buffer of `from` into `to` (same configuration), without autograd.
 void copyWeights(LighthouseNet& to, LighthouseNet& from);
 
+// Copies each parameter and buffer of `from` into `to` where both have one of that name and
+// shape (a `standard` model's MPI network into a `wide` one), and leaves the rest as they are.
+struct MatchedWeights {
+    int copied = 0, tensors = 0;            // tensors of `to`
+    int64_t copiedValues = 0, values = 0;   // their values
+};
+MatchedWeights copyMatchingWeights(LighthouseNet& to, LighthouseNet& from);
+
 // Model files: the configuration and every parameter, written atomically; in half precision
 // with `halfPrecision` (half the size; outputs within about 1e-3 relative), read back as float.
 void saveModel(LighthouseNet& net, const std::string& path, bool halfPrecision = false);

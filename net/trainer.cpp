@@ -407,13 +407,26 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     } else if (!o.init.empty()) {
         // Fine-tuning: the weights of a model of the same configuration, a fresh optimiser.
         LighthouseNet start = loadModel(o.init, device);
-        if (!start->config.sameParameters(s.net->config))
+        if (start->config.sameParameters(s.net->config)) {
+            copyWeights(s.net, start);
+            progress << "train: no checkpoint at " << o.checkpointPath() << "; fine-tuning from "
+                     << o.init << " with a fresh optimiser\n";
+        } else if (o.initPartial) {
+            const MatchedWeights m = copyMatchingWeights(s.net, start);
+            if (m.copied == 0)
+                throw InputError("--init '" + o.init + "' (a '" + start->config.name +
+                                 "' model) shares no parameter of this name and shape with --config " +
+                                 o.config);
+            progress << "train: no checkpoint at " << o.checkpointPath() << "; starting from the "
+                     << m.copied << " of " << m.tensors << " tensors (" << m.copiedValues
+                     << " of " << m.values << " values) of " << o.init
+                     << " that match in name and shape; the rest start fresh\n";
+        } else {
             throw InputError("--init '" + o.init + "' is a '" + start->config.name +
-                             "' model with other sizes than --config " + o.config);
-        copyWeights(s.net, start);
+                             "' model with other sizes than --config " + o.config +
+                             " (--init-partial starts from the parameters they share)");
+        }
         copyWeights(s.average, s.net);
-        progress << "train: no checkpoint at " << o.checkpointPath() << "; fine-tuning from "
-                 << o.init << " with a fresh optimiser\n";
         if (start->config.colourAnchor != s.net->config.colourAnchor)
             progress << "train: --init has " << (start->config.colourAnchor ? "a" : "no")
                      << " colour anchor; this run trains "

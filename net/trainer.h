@@ -33,6 +33,9 @@ struct TrainOptions {
     std::string out = "model.pt";  // model; the log is OUT.csv/.png
     std::string checkpoint;        // resumable state; empty: OUT.checkpoint
     std::string init;  // model to fine-tune from (fresh optimiser) when no checkpoint exists
+    // With a model of another configuration as `init`: start from its parameters wherever name
+    // and shape match (a `standard` model's MPI network for `wide`), the rest fresh.
+    bool initPartial = false;
     std::string supervision = "direct";  // "direct" or "paper" (see above)
     bool augment = true;
     bool halfModel = true;  // OUT in half precision (the checkpoint keeps float32)

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "core/errors.h"
 
 #include <filesystem>
@@ -183,6 +185,44 @@ TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
     EXPECT_TRUE(torch::equal(a.mpi, b.mpi));
     for (size_t k = 0; k < a.cubes.size(); ++k) EXPECT_TRUE(torch::equal(a.cubes[k], b.cubes[k]));
     std::filesystem::remove(path);
+}
+
+TEST(Model, WideSharesTheStandardMpiNetworkAndNothingElse) {
+    const NetConfig standard = NetConfig::standard(), wide = NetConfig::byName("wide");
+    wide.validate();
+    EXPECT_EQ(wide.baseWidth, 2 * standard.baseWidth);
+    EXPECT_FALSE(wide.sameParameters(standard));
+    // Tiny stand-ins of the two (same relation: only the completion width differs), so the
+    // test builds in milliseconds: what matches is exactly the MPI network.
+    NetConfig narrow = test::tinyHdrConfig(), wider = narrow;
+    wider.baseWidth = 2 * narrow.baseWidth;
+    torch::manual_seed(8);
+    LighthouseNet from(narrow), to(wider);
+    std::map<std::string, torch::Tensor> before;
+    for (const auto& p : to->named_parameters()) before[p.key()] = p.value().clone();
+    const MatchedWeights m = copyMatchingWeights(to, from);
+    EXPECT_GT(m.copied, 0);
+    EXPECT_LT(m.copied, m.tensors);
+    EXPECT_LT(m.copiedValues, m.values);
+    // Each tensor is the source's where name and shape match, and untouched elsewhere.
+    const auto fromParameters = from->named_parameters();
+    int mpiTensors = 0, kept = 0;
+    for (const auto& p : to->named_parameters()) {
+        const torch::Tensor* source = fromParameters.find(p.key());
+        const bool matches = source && source->sizes().equals(p.value().sizes());
+        if (p.key().rfind("mpi_net", 0) == 0) {
+            ++mpiTensors;
+            EXPECT_TRUE(matches) << p.key();
+        }
+        if (matches) {
+            EXPECT_TRUE(torch::equal(p.value(), *source)) << p.key();
+        } else {
+            ++kept;
+            EXPECT_TRUE(torch::equal(p.value(), before[p.key()])) << p.key() << " was overwritten";
+        }
+    }
+    EXPECT_GT(mpiTensors, 0);
+    EXPECT_GT(kept, 0);
 }
 
 TEST(Model, WeightAverageMovesByOneMinusTheDecayPerUpdate) {

@@ -231,6 +231,41 @@ TEST_F(TrainerTest, PaperModeTrainsWithoutThreeDimensionalGroundTruth) {
     removeOutputs(o);
 }
 
+TEST_F(TrainerTest, InitPartialStartsFromTheSharedParametersOfAnotherConfiguration) {
+    // A model of twice the completion width shares only the MPI network with this one.
+    TrainOptions source = options("lighthouse_trainer_partial_source");
+    source.configOverride->baseWidth = 2 * source.configOverride->baseWidth;
+    source.iterations = 1;
+    source.halfModel = false;
+    std::ostringstream log;
+    train(source, log);
+
+    TrainOptions o = options("lighthouse_trainer_partial");
+    o.init = source.out;
+    o.iterations = 1;
+    o.learningRate = 1e-9;  // one step that moves no weight by more than about 1e-9
+    EXPECT_THROW(train(o, log), InputError) << "another configuration needs --init-partial";
+    o.initPartial = true;
+    o.halfModel = false;
+    o.averageDecay = 0.0;
+    std::ostringstream partialLog;
+    train(o, partialLog);
+    EXPECT_NE(partialLog.str().find("that match in name and shape"), std::string::npos)
+        << partialLog.str();
+    const LighthouseNet wide = loadModel(source.out, torch::Device(torch::kCPU));
+    const LighthouseNet started = loadModel(o.out, torch::Device(torch::kCPU));
+    const auto wideParameters = wide->named_parameters();
+    int shared = 0;
+    for (const auto& p : started->named_parameters())
+        if (p.key().rfind("mpi_net", 0) == 0) {
+            ++shared;
+            EXPECT_TRUE(torch::allclose(p.value(), wideParameters[p.key()], 0.0, 1e-6)) << p.key();
+        }
+    EXPECT_GT(shared, 0);
+    removeOutputs(source);
+    removeOutputs(o);
+}
+
 TEST_F(TrainerTest, UnknownSupervisionIsAClearError) {
     TrainOptions o = options("lighthouse_trainer_bad");
     o.supervision = "oracle";
