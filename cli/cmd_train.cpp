@@ -35,6 +35,9 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                   "With --init of another configuration: start from its parameters wherever name "
                   "and shape match (a standard model's MPI network for --config wide), the rest "
                   "fresh");
+    cmd->add_flag("--init-widen", o->initWiden,
+                  "With --init of a model whose completion networks are half as wide (standard "
+                  "for --config wide): start from the same predictions, each channel split in two");
     cmd->add_option("--supervision", o->supervision,
                     "direct: also the oracle volume (oracle.vdb, synth --oracle-levels) and the "
                     "reference depth; "

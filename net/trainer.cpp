@@ -20,6 +20,7 @@
 #include "net/vgg_loss.h"
 #include "net/volume_render.h"
 #include "net/weight_average.h"
+#include "net/widen.h"
 
 #include <algorithm>
 #include <chrono>
@@ -411,6 +412,11 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             copyWeights(s.net, start);
             progress << "train: no checkpoint at " << o.checkpointPath() << "; fine-tuning from "
                      << o.init << " with a fresh optimiser\n";
+        } else if (o.initWiden) {
+            widenModel(s.net, start);
+            progress << "train: no checkpoint at " << o.checkpointPath() << "; starting from "
+                     << o.init << " widened (each completion channel split in two: the same "
+                     << "predictions) with a fresh optimiser\n";
         } else if (o.initPartial) {
             const MatchedWeights m = copyMatchingWeights(s.net, start);
             if (m.copied == 0)
@@ -424,7 +430,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         } else {
             throw InputError("--init '" + o.init + "' is a '" + start->config.name +
                              "' model with other sizes than --config " + o.config +
-                             " (--init-partial starts from the parameters they share)");
+                             " (--init-widen starts a wider model from the same function, "
+                             "--init-partial from the parameters they share)");
         }
         copyWeights(s.average, s.net);
         if (start->config.colourAnchor != s.net->config.colourAnchor)

@@ -36,6 +36,9 @@ struct TrainOptions {
     // With a model of another configuration as `init`: start from its parameters wherever name
     // and shape match (a `standard` model's MPI network for `wide`), the rest fresh.
     bool initPartial = false;
+    // With a model of half the completion width as `init` (standard into wide): start from the
+    // same function, each completion channel split in two (net/widen.h).
+    bool initWiden = false;
     std::string supervision = "direct";  // "direct" or "paper" (see above)
     bool augment = true;
     bool halfModel = true;  // OUT in half precision (the checkpoint keeps float32)

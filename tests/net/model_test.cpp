@@ -6,6 +6,7 @@
 #include "net/tensor_image.h"
 #include "net/volume_render.h"
 #include "net/weight_average.h"
+#include "net/widen.h"
 #include "tests/net/net_test_scenes.h"
 
 #include "tests/support/temp_path.h"
@@ -223,6 +224,42 @@ TEST(Model, WideSharesTheStandardMpiNetworkAndNothingElse) {
     }
     EXPECT_GT(mpiTensors, 0);
     EXPECT_GT(kept, 0);
+}
+
+TEST(Model, WideningKeepsThePredictionsAndSplitsEachChannelUnevenly) {
+    NetConfig narrowConfig = test::tinyHdrConfig(), wideConfig = narrowConfig;
+    wideConfig.baseWidth = 2 * narrowConfig.baseWidth;
+    torch::manual_seed(9);
+    LighthouseNet narrow(narrowConfig), wide(wideConfig);
+    {
+        // Away from the initial gains and biases (1 and 0), so that every path is exercised.
+        torch::NoGradGuard noGrad;
+        for (auto& p : narrow->parameters()) p.add_(0.05 * torch::randn_like(p));
+    }
+    narrow->eval();
+    wide->eval();
+    widenModel(wide, narrow);
+    const PairInputs in = tinyPair(narrowConfig);
+    torch::NoGradGuard noGrad;
+    const PipelineOutput a = narrow->run(in), b = wide->run(in);
+    ASSERT_EQ(a.cubes.size(), b.cubes.size());
+    for (size_t k = 0; k < a.cubes.size(); ++k)
+        EXPECT_TRUE(torch::allclose(a.cubes[k], b.cubes[k], 1e-4, 1e-5))
+            << "level " << k << ": largest difference "
+            << (a.cubes[k] - b.cubes[k]).abs().max().item<double>();
+    // The two copies of an input channel get different halves of its weights (they sum to it).
+    const auto weight = wide->completion[0]->encRes[0]->first->conv->weight;
+    const int64_t half = weight.size(1) / 2;
+    const auto first = weight.narrow(1, 0, half), second = weight.narrow(1, half, half);
+    EXPECT_FALSE(torch::allclose(first, second));
+    const auto narrowWeight = narrow->completion[0]->encRes[0]->first->conv->weight;
+    EXPECT_TRUE(torch::allclose((first + second).narrow(0, 0, narrowWeight.size(0)), narrowWeight,
+                                1e-5, 1e-6));
+
+    NetConfig otherPlanes = wideConfig;
+    otherPlanes.planes = 2 * narrowConfig.planes;
+    LighthouseNet unrelated(otherPlanes);
+    EXPECT_THROW(widenModel(unrelated, narrow), InputError);
 }
 
 TEST(Model, WeightAverageMovesByOneMinusTheDecayPerUpdate) {

@@ -266,6 +266,38 @@ TEST_F(TrainerTest, InitPartialStartsFromTheSharedParametersOfAnotherConfigurati
     removeOutputs(o);
 }
 
+TEST_F(TrainerTest, InitWidenStartsAWiderModelFromANarrowOne) {
+    TrainOptions source = options("lighthouse_trainer_widen_source");
+    source.iterations = 1;
+    source.halfModel = false;
+    std::ostringstream log;
+    train(source, log);
+
+    TrainOptions o = options("lighthouse_trainer_widen");
+    o.configOverride->baseWidth = 2 * source.configOverride->baseWidth;
+    o.init = source.out;
+    o.initWiden = true;
+    o.iterations = 1;
+    o.learningRate = 1e-9;
+    o.halfModel = false;
+    o.averageDecay = 0.0;
+    std::ostringstream widenLog;
+    train(o, widenLog);
+    EXPECT_NE(widenLog.str().find("widened"), std::string::npos) << widenLog.str();
+    // The MPI network is copied; each completion weight reading a widened input is split in
+    // two halves that sum to the narrow weight.
+    const LighthouseNet narrow = loadModel(source.out, torch::Device(torch::kCPU));
+    const LighthouseNet wide = loadModel(o.out, torch::Device(torch::kCPU));
+    EXPECT_EQ(wide->config.baseWidth, 2 * narrow->config.baseWidth);
+    const auto w = wide->completion[1]->down[0]->conv->weight;
+    const auto n = narrow->completion[1]->down[0]->conv->weight;
+    const int64_t half = w.size(1) / 2;
+    EXPECT_TRUE(torch::allclose(
+        (w.narrow(1, 0, half) + w.narrow(1, half, half)).narrow(0, 0, n.size(0)), n, 1e-4, 1e-6));
+    removeOutputs(source);
+    removeOutputs(o);
+}
+
 TEST_F(TrainerTest, UnknownSupervisionIsAClearError) {
     TrainOptions o = options("lighthouse_trainer_bad");
     o.supervision = "oracle";
