@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
         const int repeats = argc > 2 ? std::atoi(argv[2]) : 3;
         const int threads = argc > 3 ? std::atoi(argv[3]) : 2;
         if (repeats < 1 || threads < 1) {
-            std::fprintf(stderr, "usage: %s [standard|wide|paper|small] [REPEATS >= 1] [THREADS >= 1]\n",
+            std::fprintf(stderr,
+                         "usage: %s [standard|wide|paper|small] [REPEATS >= 1] [THREADS >= 1]\n",
                          argv[0]);
             return 2;
         }

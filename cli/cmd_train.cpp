@@ -17,9 +17,10 @@ void addTrainCommand(CLI::App& app, const int& threads) {
         ->required();
     cmd->add_option("--val", o->validation,
                     "Held-out scenes for validation (default: the last 5% of --data)");
-    cmd->add_option("--config", o->config,
-                    "standard (5 x 64^3 from 192x144, 32 planes, HDR), wide (standard with completion "
-                    "networks twice as wide), paper, or small")
+    cmd->add_option(
+           "--config", o->config,
+           "standard (5 x 64^3 from 192x144, 32 planes, HDR), wide (standard with completion "
+           "networks twice as wide), paper, or small")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->out,
                     "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")

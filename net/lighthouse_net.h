@@ -74,8 +74,8 @@ void copyWeights(LighthouseNet& to, LighthouseNet& from);
 // Copies each parameter and buffer of `from` into `to` where both have one of that name and
 // shape (a `standard` model's MPI network into a `wide` one), and leaves the rest as they are.
 struct MatchedWeights {
-    int copied = 0, tensors = 0;            // tensors of `to`
-    int64_t copiedValues = 0, values = 0;   // their values
+    int copied = 0, tensors = 0;           // tensors of `to`
+    int64_t copiedValues = 0, values = 0;  // their values
 };
 MatchedWeights copyMatchingWeights(LighthouseNet& to, LighthouseNet& from);
 

@@ -420,12 +420,13 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         } else if (o.initPartial) {
             const MatchedWeights m = copyMatchingWeights(s.net, start);
             if (m.copied == 0)
-                throw InputError("--init '" + o.init + "' (a '" + start->config.name +
-                                 "' model) shares no parameter of this name and shape with --config " +
-                                 o.config);
+                throw InputError(
+                    "--init '" + o.init + "' (a '" + start->config.name +
+                    "' model) shares no parameter of this name and shape with --config " +
+                    o.config);
             progress << "train: no checkpoint at " << o.checkpointPath() << "; starting from the "
-                     << m.copied << " of " << m.tensors << " tensors (" << m.copiedValues
-                     << " of " << m.values << " values) of " << o.init
+                     << m.copied << " of " << m.tensors << " tensors (" << m.copiedValues << " of "
+                     << m.values << " values) of " << o.init
                      << " that match in name and shape; the rest start fresh\n";
         } else {
             throw InputError("--init '" + o.init + "' is a '" + start->config.name +

@@ -37,11 +37,16 @@ ResidualPairImpl::ResidualPairImpl(int channels) {
 
 torch::Tensor ResidualPairImpl::forward(const torch::Tensor& x) { return x + second(first(x)); }
 
+UNet3dWidths unet3dWidths(int w) {
+    return {{w, 2 * w, 4 * w, 8 * w, 16 * w}, {8 * w, 4 * w, 2 * w, 2 * w}};
+}
+
 UNet3dImpl::UNet3dImpl(int inChannels, int outChannels, int w) {
     stem = register_module(
         "stem", torch::nn::Conv3d(torch::nn::Conv3dOptions(inChannels, w, 3).padding(1)));
-    const int enc[5] = {w, 2 * w, 4 * w, 8 * w, 16 * w};
-    const int dec[4] = {8 * w, 4 * w, 2 * w, 2 * w};
+    const UNet3dWidths widths = unet3dWidths(w);
+    const int* enc = widths.encoder;
+    const int* dec = widths.decoder;
     encRes.push_back(register_module("enc_res0", ResidualPair(enc[0])));
     for (int s = 0; s < 4; ++s) {
         down.push_back(

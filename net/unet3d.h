@@ -35,6 +35,15 @@ struct ResidualPairImpl : torch::nn::Module {
 };
 TORCH_MODULE(ResidualPair);
 
+// Channels of each stage of a U-Net of base width w: the stem and the encoder stages after it
+// (w .. 16 w), and the decoder stages after each merge (8 w .. 2 w). net/widen.cpp reads the
+// same plan to map a network onto one twice as wide.
+struct UNet3dWidths {
+    int encoder[5];
+    int decoder[4];
+};
+UNet3dWidths unet3dWidths(int baseWidth);
+
 struct UNet3dImpl : torch::nn::Module {
     UNet3dImpl(int inChannels, int outChannels, int baseWidth);
     // x: [N, inChannels, D, H, W] with D, H, W multiples of 16 -> [N, outChannels, D, H, W].

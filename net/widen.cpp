@@ -8,16 +8,16 @@ namespace lh::net {
 
 namespace {
 
-// For each channel of the wide network: the narrow channel it copies, and which of the two
-// copies it is (+1 first, -1 second; 0 for a channel that is not widened).
+// For each channel of the wide network: the narrow channel it copies, and, in a widened map
+// (every channel a copy), which of the two copies it is (+1 first, -1 second).
 struct ChannelMap {
     std::vector<int64_t> source;
-    std::vector<float> copySign;
+    std::vector<float> copySign;  // empty unless widened
     bool widened = false;
 
     static ChannelMap same(int64_t n) {
         ChannelMap m;
-        for (int64_t i = 0; i < n; ++i) m.source.push_back(i), m.copySign.push_back(0.f);
+        for (int64_t i = 0; i < n; ++i) m.source.push_back(i);
         return m;
     }
     // [a, a] for a block of `n` narrow channels starting at `offset`, appended.
@@ -64,8 +64,7 @@ void widenConvolution(torch::Tensor wideWeight, torch::Tensor wideBias,
     shape[1] = int64_t(in.source.size());
     requireShape(wideWeight, shape, name + ".weight");
     const torch::Device device = narrowWeight.device();
-    auto weight =
-        narrowWeight.index_select(0, out.index(device)).index_select(1, in.index(device));
+    auto weight = narrowWeight.index_select(0, out.index(device)).index_select(1, in.index(device));
     if (in.widened) {
         // d per (wide output, narrow input, tap), shared by the two copies of that input.
         auto d = (torch::rand({shape[0], narrowWeight.size(1), shape[2], shape[3], shape[4]},
@@ -73,10 +72,8 @@ void widenConvolution(torch::Tensor wideWeight, torch::Tensor wideBias,
                       2.0 -
                   1.0) *
                  split;
-        const auto signs = in.signs(device).view({1, -1, 1, 1, 1});
-        d = d.index_select(1, in.index(device)) * signs;
-        const auto fixed = (signs == 0).to(weight.scalar_type());
-        weight = weight * (fixed + (1.0 - fixed) * (0.5 + d));
+        d = d.index_select(1, in.index(device)) * in.signs(device).view({1, -1, 1, 1, 1});
+        weight = weight * (0.5 + d);
     }
     wideWeight.copy_(weight);
     requireShape(wideBias, {shape[0]}, name + ".bias");
@@ -87,8 +84,9 @@ void widenConvolution(torch::Tensor wideWeight, torch::Tensor wideBias,
 
 void widenUNet3d(UNet3d& wide, const UNet3d& narrow, int w, double split) {
     torch::NoGradGuard noGrad;
-    const int64_t enc[5] = {w, 2 * w, 4 * w, 8 * w, 16 * w};
-    const int64_t dec[4] = {8 * w, 4 * w, 2 * w, 2 * w};
+    const UNet3dWidths widths = unet3dWidths(w);
+    const int* enc = widths.encoder;
+    const int* dec = widths.decoder;
     const auto norm = [](ChannelLayerNorm& to, const ChannelLayerNorm& from, const ChannelMap& m,
                          const std::string& name) {
         requireShape(to->gain, {int64_t(m.source.size())}, name + ".gain");
@@ -108,9 +106,9 @@ void widenUNet3d(UNet3d& wide, const UNet3d& narrow, int w, double split) {
         preAct(to->first, from->first, m, m, name + ".first");
         preAct(to->second, from->second, m, m, name + ".second");
     };
-    widenConvolution(wide->stem->weight, wide->stem->bias, narrow->stem->weight,
-                     narrow->stem->bias, ChannelMap::doubled(enc[0]),
-                     ChannelMap::same(narrow->stem->weight.size(1)), split, "stem");
+    widenConvolution(wide->stem->weight, wide->stem->bias, narrow->stem->weight, narrow->stem->bias,
+                     ChannelMap::doubled(enc[0]), ChannelMap::same(narrow->stem->weight.size(1)),
+                     split, "stem");
     residual(wide->encRes[0], narrow->encRes[0], enc[0], "enc_res0");
     for (int s = 0; s < 4; ++s) {
         preAct(wide->down[s], narrow->down[s], ChannelMap::doubled(enc[s + 1]),
