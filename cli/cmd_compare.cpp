@@ -89,7 +89,7 @@ std::string padded(const std::string& text, std::size_t width) {
 void printRow(const std::string& label, const std::string& psnr, const std::string& angle,
               const std::string& logLuminance, const std::string& irradiance,
               const std::string& radianceRatio) {
-    std::cout << padded(label, 18) << padded(psnr, 22) << padded(angle, 26)
+    std::cout << padded(label, 20) << padded(psnr, 22) << padded(angle, 26)
               << padded(logLuminance, 24) << padded(irradiance, 24) << radianceRatio << "\n";
 }
 
@@ -106,10 +106,16 @@ void compareSingle(const CompareOptions& o) {
              formatMetric(m.radianceRatio));
     if (o.mask.empty()) return;
     if (std::isnan(m.psnrObserved))
-        std::cout << padded("observed content", 18) << "no observed pixels in '" << o.mask << "'\n";
+        std::cout << padded("observed content", 20) << "no observed pixels in '" << o.mask << "'\n";
     else
         printRow("observed content", formatMetric(m.psnrObserved), formatMetric(m.angularObserved),
                  formatMetric(m.logLuminanceObserved), "-", "-");
+    if (!std::isnan(m.psnrUnobserved)) {
+        printRow("unobserved content", formatMetric(m.psnrUnobserved), "-", "-", "-", "-");
+        std::cout << "display bias over unobserved content: "
+                  << formatNumber("%+.4f", m.displayBiasUnobserved)
+                  << " (mean sRGB difference; positive: brighter than the truth)\n";
+    }
 }
 
 void requireDirectory(const std::string& path, const std::string& what) {
@@ -166,13 +172,14 @@ void writeCsv(AtomicOutput& out, const std::vector<EnvmapPair>& pairs,
     {
         std::ofstream file(out.tempPath());
         file << "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,"
-                "log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio\n";
+                "log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio,"
+                "psnr_unobserved_db,srgb_bias_unobserved\n";
         for (std::size_t i = 0; i < pairs.size(); ++i) {
             const EnvmapMetrics& m = metrics[i];
             file << csvField(pairs[i].relative);
-            for (double v :
-                 {m.psnrAll, m.angularAll, m.psnrObserved, m.angularObserved, m.logLuminanceAll,
-                  m.logLuminanceObserved, m.irradianceError, m.radianceRatio})
+            for (double v : {m.psnrAll, m.angularAll, m.psnrObserved, m.angularObserved,
+                             m.logLuminanceAll, m.logLuminanceObserved, m.irradianceError,
+                             m.radianceRatio, m.psnrUnobserved, m.displayBiasUnobserved})
                 file << "," << formatNumber("%.8g", v);
             file << "\n";
         }
@@ -201,6 +208,7 @@ void compareBatch(const CompareOptions& o) {
     std::vector<EnvmapMetrics> metrics;
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
     std::vector<double> logLuminanceAll, logLuminanceObserved, irradiance, radianceRatio;
+    std::vector<double> psnrUnobserved, biasUnobserved;
     int withMask = 0;
     for (const EnvmapPair& p : pairs) {
         const EnvmapMetrics m = compareFiles(p.pred, p.gt, p.mask);
@@ -215,6 +223,8 @@ void compareBatch(const CompareOptions& o) {
             psnrObserved.push_back(m.psnrObserved);
             angularObserved.push_back(m.angularObserved);
             logLuminanceObserved.push_back(m.logLuminanceObserved);
+            psnrUnobserved.push_back(m.psnrUnobserved);
+            biasUnobserved.push_back(m.displayBiasUnobserved);
         }
         const int done = int(metrics.size());
         if (total > 20 && (done % progressStep == 0 || done == total))
@@ -232,6 +242,13 @@ void compareBatch(const CompareOptions& o) {
         printRow("observed content", formatMeanStd(meanStd(psnrObserved), withMask),
                  formatMeanStd(meanStd(angularObserved), withMask),
                  formatMeanStd(meanStd(logLuminanceObserved), withMask), "-", "-");
+    if (withMask > 0 && meanStd(psnrUnobserved).count > 0) {
+        printRow("unobserved content", formatMeanStd(meanStd(psnrUnobserved), withMask), "-", "-",
+                 "-", "-");
+        std::cout << "display bias over unobserved content: "
+                  << formatNumber("%+.4f", meanStd(biasUnobserved).mean)
+                  << " (mean sRGB difference; positive: brighter than the truth)\n";
+    }
     if (csv) std::cout << "per-envmap rows: " << csv->finalPath() << "\n";
 }
 

@@ -86,6 +86,21 @@ double psnr(const ImageRGB& pred, const ImageRGB& gt, const std::vector<std::uin
     return -10.0 * std::log10(squaredError / double(values));  // peak 1: 10 log10(1 / MSE)
 }
 
+double displayBias(const ImageRGB& pred, const ImageRGB& gt,
+                   const std::vector<std::uint8_t>* mask) {
+    checkComparable(pred, gt, mask);
+    double sum = 0.0;
+    std::size_t values = 0;
+    const std::size_t pixels = std::size_t(gt.width) * gt.height;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        if (!counts(mask, p)) continue;
+        for (std::size_t i = 3 * p; i < 3 * p + 3; ++i)
+            sum += displayValue(pred.pixels[i]) - displayValue(gt.pixels[i]);
+        values += 3;
+    }
+    return values == 0 ? kNaN : sum / double(values);
+}
+
 double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
                            const std::vector<std::uint8_t>* mask) {
     checkComparable(pred, gt, mask);
@@ -183,6 +198,10 @@ EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
         m.psnrObserved = psnr(pred, gt, mask);
         m.angularObserved = angularErrorDegrees(pred, gt, mask);
         m.logLuminanceObserved = logLuminanceRmse(pred, gt, mask);
+        std::vector<std::uint8_t> unobserved(mask->size());
+        for (std::size_t p = 0; p < unobserved.size(); ++p) unobserved[p] = (*mask)[p] == 0;
+        m.psnrUnobserved = psnr(pred, gt, &unobserved);
+        m.displayBiasUnobserved = displayBias(pred, gt, &unobserved);
     }
     m.radianceRatio = meanRadianceRatio(pred, gt);
     return m;

@@ -31,6 +31,12 @@ double psnr(const ImageRGB& pred, const ImageRGB& gt,
 double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
                            const std::vector<std::uint8_t>* mask = nullptr);
 
+// Mean over pixels (all, or those in the mask) and channels of the signed difference of the
+// displayed values, srgbEncode(clamp(pred)) - srgbEncode(clamp(gt)), in [-1, 1]: positive
+// when the prediction is brighter than the truth, as PSNR sees it. NaN for an empty mask.
+double displayBias(const ImageRGB& pred, const ImageRGB& gt,
+                   const std::vector<std::uint8_t>* mask = nullptr);
+
 // The six axis normals of the irradiance metric, in this order (world frame, OpenCV axes:
 // +y is down).
 enum class AxisNormal { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };
@@ -69,7 +75,8 @@ double logLuminanceRmse(const ImageRGB& pred, const ImageRGB& gt,
 // luminance is at most kMinIrradiance / (4 pi) (a black ground truth).
 double meanRadianceRatio(const ImageRGB& pred, const ImageRGB& gt);
 
-// The four numbers the paper reports per envmap, and the two HDR ones. The observed ones
+// The four numbers the paper reports per envmap, the HDR ones, and PSNR and display bias over
+// the unobserved pixels. The observed and unobserved ones
 // are NaN without a mask. Irradiance is an integral over the whole sphere, so it has no
 // observed variant.
 struct EnvmapMetrics {
@@ -81,6 +88,9 @@ struct EnvmapMetrics {
     double logLuminanceAll = std::numeric_limits<double>::quiet_NaN();       // ln units
     double logLuminanceObserved = std::numeric_limits<double>::quiet_NaN();  // ln units
     double radianceRatio = std::numeric_limits<double>::quiet_NaN();         // ratio
+    // Where the mask is zero: what a predictor had to invent.
+    double psnrUnobserved = std::numeric_limits<double>::quiet_NaN();         // dB
+    double displayBiasUnobserved = std::numeric_limits<double>::quiet_NaN();  // sRGB units
 };
 
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,

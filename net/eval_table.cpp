@@ -33,6 +33,15 @@ std::string cell(const std::vector<double>& values, int precision) {
     return out.str();
 }
 
+// As cell, with the mean's sign always shown.
+std::string signedCell(const std::vector<double>& values, int precision) {
+    const MeanStd m = meanStd(values);
+    std::ostringstream out;
+    out << std::fixed << std::showpos << std::setprecision(precision) << m.mean << std::noshowpos
+        << " +- " << m.std;
+    return out.str();
+}
+
 struct CsvRow {
     std::string example;
     std::size_t envmap = 0;
@@ -69,7 +78,7 @@ CsvRow parseCsvRow(const std::string& line, const std::string& where) {
 std::string evalCsvHeader() {
     return "example,envmap,method,psnr_all_db,angular_all_deg,psnr_observed_db,"
            "angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,"
-           "radiance_ratio\n";
+           "radiance_ratio,psnr_unobserved_db,srgb_bias_unobserved\n";
 }
 
 std::string evalCsvRow(const std::string& example, std::size_t envmap, const std::string& method,
@@ -91,6 +100,8 @@ void addScores(MethodScores& s, const MetricValues& v) {
     s.logLuminanceObserved.push_back(v[5]);
     s.irradianceError.push_back(v[6]);
     s.radianceRatio.push_back(v[7]);
+    s.psnrUnobserved.push_back(v[8]);
+    s.displayBiasUnobserved.push_back(v[9]);
 }
 
 std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::size_t scenes,
@@ -110,7 +121,13 @@ std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::siz
        << " scenes) of `" << data << "`, model config `" << configName << "`; mean +- std. "
        << "Log-lum RMSE: of ln(1 + luminance); irradiance rel. error: |E_pred - E_gt| / E_gt at "
        << "the six axis normals; radiance ratio: mean luminance over the sphere, predicted / "
-       << "true (1 = the right total light; docs/metrics.md).\n";
+       << "true (1 = the right total light; docs/metrics.md).\n\n"
+       << "What each method invents (the unobserved pixels); display bias: mean sRGB difference, "
+       << "positive where the prediction is brighter than the truth:\n\n"
+       << "| method | PSNR unobserved (dB) | display bias unobserved |\n|---|---|---|\n";
+    for (const auto& m : methods)
+        md << "| " << m.name << " | " << cell(m.psnrUnobserved, 2) << " | "
+           << signedCell(m.displayBiasUnobserved, 3) << " |\n";
     return md.str();
 }
 

@@ -16,8 +16,9 @@ struct ImageRGB;
 namespace lh::net {
 
 // Columns of metrics.csv after example, envmap and method, in order: PSNR all, angular all,
-// PSNR observed, angular observed, log-lum RMSE all, log-lum RMSE observed, irradiance error.
-using MetricValues = std::array<double, 8>;
+// PSNR observed, angular observed, log-lum RMSE all, log-lum RMSE observed, irradiance error,
+// radiance ratio, PSNR unobserved, display bias unobserved.
+using MetricValues = std::array<double, 10>;
 
 // Contact sheet: rows of ground truth | predictions, 90 pixels high, the first 12 envmaps.
 constexpr int kEvalSheetTileHeight = 90;

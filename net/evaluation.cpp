@@ -145,10 +145,12 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
             const std::string example = fs::path(dirs[s]).filename().string();
             for (size_t m = 0; m < predictions.size(); ++m) {
                 const EnvmapMetrics metrics = compareEnvmaps(predictions[m], gt, &ex.masks[e]);
-                const MetricValues values = {metrics.psnrAll,         metrics.angularAll,
-                                             metrics.psnrObserved,    metrics.angularObserved,
-                                             metrics.logLuminanceAll, metrics.logLuminanceObserved,
-                                             metrics.irradianceError, metrics.radianceRatio};
+                const MetricValues values = {
+                    metrics.psnrAll,         metrics.angularAll,
+                    metrics.psnrObserved,    metrics.angularObserved,
+                    metrics.logLuminanceAll, metrics.logLuminanceObserved,
+                    metrics.irradianceError, metrics.radianceRatio,
+                    metrics.psnrUnobserved,  metrics.displayBiasUnobserved};
                 addScores(report.methods[m], values);
                 csv << evalCsvRow(example, e, report.methods[m].name, values, o.shard.active);
             }

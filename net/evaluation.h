@@ -44,6 +44,7 @@ struct MethodScores {
     std::string name;
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
     std::vector<double> logLuminanceAll, logLuminanceObserved, irradianceError, radianceRatio;
+    std::vector<double> psnrUnobserved, displayBiasUnobserved;
 };
 
 struct EvalReport {

@@ -101,9 +101,11 @@ cp a_000.exr pred/scene_b/env_1.exr
 ok --stdout "^3 envmaps, 1 with an observed mask" \
    --stdout "^all content +$num ± $num +$num ± $num +$num ± $num +$num ± $num +$num ± $num$" \
    --stdout "^observed content +$num ± 0[.]00 +$num ± 0[.]00 +$num ± 0[.]00 +- +-$" \
+   --stdout "^unobserved content +$num ± 0[.]00 +- +- +- +-$" \
+   --stdout "^display bias over unobserved content: [+-]0[.][0-9]{4} " \
    --file rows.csv -- "$lh" compare --batch pred gt --csv rows.csv
 if [ -s rows.csv ]; then
-    [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio" ] ||
+    [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio,psnr_unobserved_db,srgb_bias_unobserved" ] ||
         fail "CSV header: $(head -n 1 rows.csv)"
     [ "$(tail -n +2 rows.csv | cut -d, -f1 | tr '\n' ' ')" = \
       "scene_a/env_0.exr scene_b/env_0.exr scene_b/env_1.exr " ] || fail "CSV rows: $(cat rows.csv)"

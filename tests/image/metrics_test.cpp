@@ -325,5 +325,36 @@ TEST(HdrMetrics, CompareEnvmapsFillsTheHdrFields) {
     EXPECT_THROW(irradianceError(uniform(4, 2, 1.f, 1.f, 1.f), gt), InputError);
 }
 
+TEST(Metrics, UnobservedPixelsGetTheirOwnPsnrAndDisplayBias) {
+    // Truth 0.25 everywhere (displayed as srgbEncode(0.25) = 0.537); the prediction is exact on
+    // the observed left half and white (displayed 1) on the unobserved right half.
+    const int w = 8, h = 4;
+    const ImageRGB gt = uniform(w, h, 0.25f, 0.25f, 0.25f);
+    ImageRGB pred = gt;
+    std::vector<std::uint8_t> mask(std::size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (x < w / 2)
+                mask[std::size_t(y) * w + x] = 1;
+            else
+                std::fill_n(pred.at(x, y), 3, 1.f);
+        }
+    const double gap = 1.0 - srgbEncode(0.25f);
+    const EnvmapMetrics m = compareEnvmaps(pred, gt, &mask);
+    EXPECT_TRUE(std::isinf(m.psnrObserved));
+    EXPECT_NEAR(m.psnrUnobserved, -10.0 * std::log10(gap * gap), 1e-4);
+    EXPECT_NEAR(m.displayBiasUnobserved, gap, 1e-6);
+    // Signed: the other way round it is as dark as it was bright.
+    EXPECT_NEAR(compareEnvmaps(gt, pred, &mask).displayBiasUnobserved, -gap, 1e-6);
+    // Over all pixels the bias halves; without a mask there is no unobserved part.
+    EXPECT_NEAR(displayBias(pred, gt), gap / 2, 1e-6);
+    const EnvmapMetrics unmasked = compareEnvmaps(pred, gt);
+    EXPECT_TRUE(std::isnan(unmasked.psnrUnobserved));
+    EXPECT_TRUE(std::isnan(unmasked.displayBiasUnobserved));
+    // Everything observed: nothing left to invent.
+    const std::vector<std::uint8_t> all(std::size_t(w) * h, 1);
+    EXPECT_TRUE(std::isnan(compareEnvmaps(pred, gt, &all).psnrUnobserved));
+}
+
 }  // namespace
 }  // namespace lh
