@@ -73,12 +73,26 @@ NetConfig NetConfig::paper() {
 }
 
 NetConfig NetConfig::byName(const std::string& name) {
-    if (name == "standard") return standard();
-    if (name == "wide") return wide();
-    if (name == "small") return small();
-    if (name == "paper") return paper();
-    throw InputError("unknown configuration '" + name +
-                     "' (expected 'standard', 'wide', 'small' or 'paper')");
+    const std::string suffix = "+profile";
+    const bool profile = name.size() > suffix.size() &&
+                         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    const std::string base = profile ? name.substr(0, name.size() - suffix.size()) : name;
+    NetConfig c;
+    if (base == "standard")
+        c = standard();
+    else if (base == "wide")
+        c = wide();
+    else if (base == "small")
+        c = small();
+    else if (base == "paper")
+        c = paper();
+    else
+        throw InputError("unknown configuration '" + name +
+                         "' (expected 'standard', 'wide', 'small' or 'paper', optionally with "
+                         "'+profile')");
+    c.name = name;
+    c.heightProfile = profile;
+    return c;
 }
 
 void NetConfig::validate() const {
@@ -124,7 +138,8 @@ std::string NetConfig::toJson() const {
                               {"mpi_width", mpiWidth},
                               {"completion_scale", completionScale},
                               {"hdr", hdr},
-                              {"colour_anchor", colourAnchor}};
+                              {"colour_anchor", colourAnchor},
+                              {"height_profile", heightProfile}};
     return j.dump();
 }
 
@@ -156,6 +171,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.completionScale = j.value("completion_scale", 1);
         c.hdr = j.value("hdr", false);
         c.colourAnchor = j.value("colour_anchor", false);
+        c.heightProfile = j.value("height_profile", false);
     } catch (const nlohmann::json::exception& e) {
         throw FileError(sourceName + ": network configuration is not valid: " + e.what());
     }

@@ -42,12 +42,16 @@ struct NetConfig {
     // untrained or uncertain network paints the room in the photo's own hue and exposure, and a
     // brighter exposure of the same photo brightens the whole volume by the same factor.
     bool colourAnchor = false;
+    // The completion networks also see the observed colour at each height of the room
+    // (net/height_profile.h): 4 more input channels each. Named by a "+profile" suffix.
+    bool heightProfile = false;
 
     static NetConfig small();
     static NetConfig paper();
     static NetConfig standard();
     static NetConfig wide();
-    // "standard", "wide", "small" or "paper"; throws InputError otherwise.
+    // "standard", "wide", "small" or "paper", each optionally with "+profile" (heightProfile on);
+    // throws InputError otherwise.
     static NetConfig byName(const std::string& name);
 
     // Throws InputError naming the bad size.

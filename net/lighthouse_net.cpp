@@ -4,6 +4,7 @@
 #include "core/errors.h"
 #include "image/resample.h"
 #include "net/hdr.h"
+#include "net/height_profile.h"
 #include "net/mpi_resample.h"
 #include "net/psv.h"
 #include "net/tensor_image.h"
@@ -37,10 +38,11 @@ LighthouseNetImpl::LighthouseNetImpl(const NetConfig& c) : config(c) {
         mpiNet = register_module("mpi_net", UNet3d(6, c.hdr ? 6 : 5, c.baseWidth));
     // The 2D (standard) design also gives the completion networks voxel positions (3 channels).
     const int positionChannels = c.mpiNetwork == "2d" ? 3 : 0;
+    const int profileChannels = c.heightProfile ? kHeightProfileChannels : 0;
     for (int k = 0; k < c.levels; ++k)
-        completion.push_back(
-            register_module("completion" + std::to_string(k),
-                            UNet3d((k == 0 ? 4 : 8) + positionChannels, 5, c.baseWidth)));
+        completion.push_back(register_module(
+            "completion" + std::to_string(k),
+            UNet3d((k == 0 ? 4 : 8) + positionChannels + profileChannels, 5, c.baseWidth)));
 }
 
 torch::Tensor LighthouseNetImpl::logColourAnchor(const torch::Tensor& refLinear) const {
@@ -130,6 +132,8 @@ std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::
     std::vector<torch::Tensor> out;
     const bool halve = config.completionScale == 2;
     const VolumeLayout networkLayout{layout.s0, layout.levels, config.completionResolution()};
+    // Level 0 holds the whole room: its profile serves every level.
+    const torch::Tensor profile = config.heightProfile ? heightProfile(inputs[0]) : torch::Tensor();
     for (size_t k = 0; k < inputs.size(); ++k) {
         const auto input =
             k == 0 ? inputs[k]
@@ -143,6 +147,11 @@ std::vector<torch::Tensor> LighthouseNetImpl::complete(const std::vector<torch::
                                        .to(features.device(), torch::kFloat32);
             features = torch::cat({features, positions}, 1);
         }
+        if (profile.defined())
+            features = torch::cat(
+                {features, heightProfileFeatures(profile, layout, int(k),
+                                                 config.completionResolution(), config.hdr)},
+                1);
         auto raw = completion[k](features);  // [1, 5, r, r, r]
         if (halve)
             raw = F::interpolate(
@@ -196,6 +205,25 @@ void copyWeights(LighthouseNet& to, LighthouseNet& from) {
     for (auto& b : to->named_buffers()) b.value().copy_(buffers[b.key()]);
 }
 
+namespace {
+
+// Whether `to` is a network's first convolution (its stem) with more input channels than
+// `from` (dimension 1) and the same sizes elsewhere. Only stems: a deeper convolution with more
+// inputs belongs to a wider network, whose extra inputs are not new information.
+bool gainsInputChannels(const std::string& name, const torch::Tensor& to,
+                        const torch::Tensor& from) {
+    const std::string stem = ".stem.weight";
+    if (name.size() < stem.size() ||
+        name.compare(name.size() - stem.size(), stem.size(), stem) != 0)
+        return false;
+    if (to.dim() < 2 || to.dim() != from.dim() || to.size(1) <= from.size(1)) return false;
+    for (int64_t d = 0; d < to.dim(); ++d)
+        if (d != 1 && to.size(d) != from.size(d)) return false;
+    return true;
+}
+
+}  // namespace
+
 MatchedWeights copyMatchingWeights(LighthouseNet& to, LighthouseNet& from) {
     torch::NoGradGuard noGrad;
     MatchedWeights m;
@@ -205,8 +233,19 @@ MatchedWeights copyMatchingWeights(LighthouseNet& to, LighthouseNet& from) {
             ++m.tensors;
             m.values += t.value().numel();
             const torch::Tensor* s = source.find(t.key());
-            if (!s || !s->sizes().equals(t.value().sizes())) continue;
-            t.value().copy_(*s);
+            if (!s) continue;
+            if (s->sizes().equals(t.value().sizes())) {
+                t.value().copy_(*s);
+            } else if (gainsInputChannels(t.key(), t.value(), *s)) {
+                // A convolution that reads more inputs (a completion network's stem, given the
+                // height profile): the old inputs keep their weights, the new ones start at
+                // zero, so the network computes what it did until training uses them.
+                t.value().zero_();
+                t.value().narrow(1, 0, s->size(1)).copy_(*s);
+                ++m.extended;
+            } else {
+                continue;
+            }
             ++m.copied;
             m.copiedValues += t.value().numel();
         }

@@ -73,8 +73,12 @@ void copyWeights(LighthouseNet& to, LighthouseNet& from);
 
 // Copies each parameter and buffer of `from` into `to` where both have one of that name and
 // shape (a `standard` model's MPI network into a `wide` one), and leaves the rest as they are.
+// A tensor of `to` that only has more input channels (dimension 1: the completion stems of a
+// "+profile" configuration) takes `from`'s weights for the old channels and zero for the new,
+// so the model predicts what `from` did.
 struct MatchedWeights {
     int copied = 0, tensors = 0;           // tensors of `to`
+    int extended = 0;                      // of the copied: with input channels added (zero)
     int64_t copiedValues = 0, values = 0;  // their values
 };
 MatchedWeights copyMatchingWeights(LighthouseNet& to, LighthouseNet& from);

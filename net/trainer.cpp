@@ -426,8 +426,11 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                     o.config);
             progress << "train: no checkpoint at " << o.checkpointPath() << "; starting from the "
                      << m.copied << " of " << m.tensors << " tensors (" << m.copiedValues << " of "
-                     << m.values << " values) of " << o.init
-                     << " that match in name and shape; the rest start fresh\n";
+                     << m.values << " values) of " << o.init << " that match in name and shape";
+            if (m.extended > 0)
+                progress << " or only gained input channels (" << m.extended
+                         << " stems; the new inputs weighted zero)";
+            progress << "; the rest start fresh\n";
         } else {
             throw InputError("--init '" + o.init + "' is a '" + start->config.name +
                              "' model with other sizes than --config " + o.config +

@@ -266,6 +266,32 @@ TEST_F(TrainerTest, InitPartialStartsFromTheSharedParametersOfAnotherConfigurati
     removeOutputs(o);
 }
 
+TEST_F(TrainerTest, InitPartialCarriesAModelIntoItsHeightProfileConfiguration) {
+    TrainOptions source = options("lighthouse_trainer_profile_source");
+    source.iterations = 1;
+    source.halfModel = false;
+    std::ostringstream log;
+    train(source, log);
+
+    TrainOptions o = options("lighthouse_trainer_profile");
+    o.configOverride->heightProfile = true;
+    o.init = source.out;
+    o.initPartial = true;
+    o.iterations = 1;
+    o.halfModel = false;
+    std::ostringstream profileLog;
+    train(o, profileLog);
+    const int levels = o.configOverride->levels;
+    EXPECT_NE(profileLog.str().find("or only gained input channels (" + std::to_string(levels) +
+                                    " stems"),
+              std::string::npos)
+        << profileLog.str();
+    const LighthouseNet started = loadModel(o.out, torch::Device(torch::kCPU));
+    EXPECT_TRUE(started->config.heightProfile);
+    removeOutputs(source);
+    removeOutputs(o);
+}
+
 TEST_F(TrainerTest, InitWidenStartsAWiderModelFromANarrowOne) {
     TrainOptions source = options("lighthouse_trainer_widen_source");
     source.iterations = 1;
