@@ -259,7 +259,8 @@ void addCompareCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "compare",
         "PSNR, RGB angular error, log-luminance RMSE, irradiance error and mean radiance "
-        "ratio of predicted envmaps against ground truth (docs/metrics.md)");
+        "ratio of predicted envmaps against ground truth, and with a mask the PSNR and "
+        "display bias of the unobserved pixels (docs/metrics.md)");
     cmd->add_option("pred", o->pred, "Predicted envmap (.exr), or PRED_DIR with --batch")
         ->required();
     cmd->add_option("gt", o->gt, "Ground-truth envmap (.exr), or GT_DIR with --batch")->required();

@@ -17,6 +17,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
         ->required();
     cmd->add_option("--val", o->validation,
                     "Held-out scenes for validation (default: the last 5% of --data)");
+    cmd->add_option("--max-clipped", o->maxClipped,
+                    "Leave out scenes of --data with an envmap whose pixels are above 1 (white on "
+                    "a display) over more than this fraction of it, before the held-out split; "
+                    "0.1: no more than the path-traced evaluation rooms clip (1: keep all)")
+        ->capture_default_str();
     cmd->add_option(
            "--config", o->config,
            "standard (5 x 64^3 from 192x144, 32 planes, HDR), wide (standard with completion "

@@ -11,6 +11,7 @@
 #include "net/curve_plot.h"
 #include "net/device.h"
 #include "net/distributed.h"
+#include "net/exposure_filter.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
 #include "net/mpi_render.h"
@@ -44,6 +45,8 @@ void TrainOptions::validate() const {
     if (supervision != "direct" && supervision != "paper")
         throw InputError("--supervision must be 'direct' or 'paper', got '" + supervision + "'");
     if (stopAfter < 0) throw InputError("--stop-after must be at least 0");
+    if (!(maxClipped >= 0.0 && maxClipped <= 1.0))
+        throw InputError("--max-clipped must be a fraction in [0, 1]");
     if (batch < 1 || batch > 4096) throw InputError("--batch must be in [1, 4096]");
     if (!(averageDecay >= 0 && averageDecay < 1))
         throw InputError("--average-decay must be in [0, 1)");
@@ -372,6 +375,16 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     const bool direct = o.supervision == "direct";
 
     std::vector<std::string> trainDirs = listExamples(o.data), validationDirs;
+    if (o.maxClipped < 1.0) {
+        const std::size_t all = trainDirs.size();
+        trainDirs = withoutOverexposedScenes(trainDirs, o.maxClipped, progress);
+        progress << "train: left out " << all - trainDirs.size() << " of " << all
+                 << " scenes with an envmap clipped on more than " << o.maxClipped
+                 << " of its pixels\n";
+        if (trainDirs.empty())
+            throw InputError("--max-clipped " + std::to_string(o.maxClipped) +
+                             " leaves no scene of '" + o.data + "'; raise it");
+    }
     if (!o.validation.empty()) {
         validationDirs = listExamples(o.validation);
     } else {

@@ -29,6 +29,9 @@ namespace lh::net {
 struct TrainOptions {
     std::string data;        // training split (lighthouse synth --split train)
     std::string validation;  // held-out scenes; empty: the last 5% of `data`, not trained on
+    // Leave out scenes of `data` with an envmap clipped (channel mean above 1) on more than this
+    // fraction of its pixels, before the held-out split (net/exposure_filter.h); 1: keep all.
+    double maxClipped = 1.0;
     std::string config = "standard";
     std::string out = "model.pt";  // model; the log is OUT.csv/.png
     std::string checkpoint;        // resumable state; empty: OUT.checkpoint

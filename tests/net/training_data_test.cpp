@@ -2,6 +2,7 @@
 // extra fields, views, envmaps with their first-hit positions, a one-channel z-depth EXR, and
 // no env_K_mask.png for the first envmap (computed) but one for the second (read).
 #include "net/training_data.h"
+#include "net/exposure_filter.h"
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
@@ -16,6 +17,7 @@
 #include <unistd.h>
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -105,6 +107,29 @@ fs::path writeExample(const fs::path& root, bool withDepth = true) {
     writePng(mask, (dir / "env_1_mask.png").string());
     if (withDepth) writeDepthY(dir / "ref_depth.exr");
     return dir;
+}
+
+TEST(ExposureFilter, LeavesOutScenesWithAnEnvmapClippedOnMoreThanTheLimit) {
+    // env_0's left half has a channel mean of 2 (clipped), its right half 0.5; env_1 is 1
+    // everywhere, which is not above 1.
+    EXPECT_EQ(clippedFraction(halves({3.f, 2.f, 1.f}, {0.5f, 0.5f, 0.5f})), 0.5);
+    EXPECT_EQ(clippedFraction(halves({1.f, 1.f, 1.f}, {1.f, 1.f, 1.f})), 0.0);
+    EXPECT_EQ(clippedFraction(ImageRGB()), 0.0);
+    ScratchDir bright("filter_bright"), dim("filter_dim");
+    const std::string brightScene = writeExample(bright.path).string();
+    const fs::path dimScene = writeExample(dim.path);
+    writeExr(halves({0.5f, 0.5f, 0.5f}, {0.9f, 0.9f, 0.9f}), (dimScene / "env_0.exr").string());
+    const std::vector<std::string> both = {brightScene, dimScene.string()};
+    std::ostringstream progress;
+    // The worst envmap decides: 0.5 of env_0's pixels.
+    EXPECT_EQ(withoutOverexposedScenes(both, 0.5, progress), both);
+    EXPECT_EQ(withoutOverexposedScenes(both, 0.49, progress),
+              std::vector<std::string>{dimScene.string()});
+    EXPECT_EQ(withoutOverexposedScenes(both, 0.0, progress),
+              std::vector<std::string>{dimScene.string()});
+    EXPECT_NE(progress.str().find("2/2 scenes, 1 kept"), std::string::npos) << progress.str();
+    fs::remove(dimScene / "env_1.exr");
+    EXPECT_THROW(withoutOverexposedScenes(both, 0.1, progress), FileError);
 }
 
 TEST(TrainingData, ReadsADevCyclesStyleExampleAndComputesMissingMasks) {
