@@ -13,8 +13,11 @@
 #      iteration 1300, then to 1900, written in half precision;
 #   6. 1700 iterations on 1200 newer scenes (seeds 3200-4399), fine-tuned from step 5's model;
 #   7. 1500 iterations on another 1200 (seeds 4400-5599) with the squared loss weighted 24,
-#      fine-tuned from step 6's model. Its half-precision moving average is the committed
-#      model, copied to models/standard.pt.
+#      fine-tuned from step 6's model;
+#   8. the `wide` configuration widened from step 7 (--init-widen: the same predictions),
+#      1000 iterations of batch 2 on 3600 scenes (seeds 4400-7999), then 600 more on those
+#      of them without over-exposed envmaps (--max-clipped 0.1). Its half-precision moving
+#      average is the committed model, copied to models/standard.pt.
 # The bundled model was trained while the code gained its last losses and augmentations
 # (models/README.md says at which iterations); with today's code this is one run.
 # WORK (default /work/lighthouse-train) holds the data, the checkpoint and the logs.
@@ -63,7 +66,27 @@ step7=(--threads 1 train --data "$work/data/train_v3d" --config standard
        --lr 1.5e-4 --seed 11 --validate-every 300 "${progress[@]}" --envmap-mse-weight 24)
 "$bin" "${step7[@]}" -o "$work/step7.pt"
 "$bin" "${step7[@]}" -o "$work/step7_half.pt" --half
-cp "$work/step7_half.pt" models/standard.pt
+
+# Step 8: 2400 more scenes, all 3600 of seeds 4400-7999 in one folder (links), the wide model.
+"$bin" synth --split train --seed 5600 --count 1200 "${scenes[@]}" -o "$work/data/train_v3e"
+"$bin" synth --split train --seed 6800 --count 1200 "${scenes[@]}" -o "$work/data/train_v3f"
+mkdir -p "$work/data/train_v3all"
+for part in d e f; do
+  for scene in "$work/data/train_v3$part"/[0-9]*; do
+    ln -sfn "$scene" "$work/data/train_v3all/$part$(basename "$scene")"
+  done
+done
+wide=(--threads 1 train --data "$work/data/train_v3all" --config wide
+      --init "$work/step7_half.pt" --init-widen --checkpoint "$work/wide.checkpoint"
+      --iterations 1000 --batch 2 --lr 1.5e-4 --seed 37 --validate-every 250
+      "${progress[@]}" --envmap-mse-weight 24)
+"$bin" "${wide[@]}" -o "$work/wide.pt"
+step8=(--threads 1 train --data "$work/data/train_v3all" --max-clipped 0.1 --config wide
+       --init "$work/wide.pt" --checkpoint "$work/step8.checkpoint" --iterations 600
+       --lr 1e-4 --seed 53 --validate-every 300 "${progress[@]}" --envmap-mse-weight 24)
+"$bin" "${step8[@]}" -o "$work/step8.pt"
+"$bin" "${step8[@]}" -o "$work/step8_half.pt" --half
+cp "$work/step8_half.pt" models/standard.pt
 cp "$work/v3.pt.csv" models/standard_training_log.csv
 cp "$work/v3.pt.png" models/standard_training_curves.png
 cp "$work/standard.pt.csv" models/standard_finetune_log.csv
@@ -72,3 +95,5 @@ cp "$work/step6.pt.csv" models/standard_step6_log.csv
 cp "$work/step6.pt.png" models/standard_step6_curves.png
 cp "$work/step7.pt.csv" models/standard_step7_log.csv
 cp "$work/step7.pt.png" models/standard_step7_curves.png
+cp "$work/step8.pt.csv" models/standard_step8_log.csv
+cp "$work/step8.pt.png" models/standard_step8_curves.png
