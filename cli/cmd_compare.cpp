@@ -98,6 +98,12 @@ void printHeader() {
              "irradiance rel. error", "radiance ratio");
 }
 
+// The display bias over the unobserved pixels, one line below the table.
+void printDisplayBias(double bias) {
+    std::cout << "display bias over unobserved content: " << formatNumber("%+.4f", bias)
+              << " (mean sRGB difference; positive: brighter than the truth)\n";
+}
+
 void compareSingle(const CompareOptions& o) {
     const EnvmapMetrics m = compareFiles(o.pred, o.gt, o.mask);
     printHeader();
@@ -112,9 +118,7 @@ void compareSingle(const CompareOptions& o) {
                  formatMetric(m.logLuminanceObserved), "-", "-");
     if (!std::isnan(m.psnrUnobserved)) {
         printRow("unobserved content", formatMetric(m.psnrUnobserved), "-", "-", "-", "-");
-        std::cout << "display bias over unobserved content: "
-                  << formatNumber("%+.4f", m.displayBiasUnobserved)
-                  << " (mean sRGB difference; positive: brighter than the truth)\n";
+        printDisplayBias(m.displayBiasUnobserved);
     }
 }
 
@@ -245,9 +249,7 @@ void compareBatch(const CompareOptions& o) {
     if (withMask > 0 && meanStd(psnrUnobserved).count > 0) {
         printRow("unobserved content", formatMeanStd(meanStd(psnrUnobserved), withMask), "-", "-",
                  "-", "-");
-        std::cout << "display bias over unobserved content: "
-                  << formatNumber("%+.4f", meanStd(biasUnobserved).mean)
-                  << " (mean sRGB difference; positive: brighter than the truth)\n";
+        printDisplayBias(meanStd(biasUnobserved).mean);
     }
     if (csv) std::cout << "per-envmap rows: " << csv->finalPath() << "\n";
 }

@@ -68,37 +68,52 @@ double luminance(const float* rgb) {
 
 }  // namespace
 
-double psnr(const ImageRGB& pred, const ImageRGB& gt, const std::vector<std::uint8_t>* mask) {
-    checkComparable(pred, gt, mask);
-    double squaredError = 0.0;
+namespace {
+
+// Sums over the counted pixels' channels of the displayed difference
+// d = displayValue(pred) - displayValue(gt): PSNR reads the squares, the display bias the
+// signed values.
+struct DisplayDifferences {
+    double sum = 0.0, squares = 0.0;
     std::size_t values = 0;
+};
+
+DisplayDifferences displayDifferences(const ImageRGB& pred, const ImageRGB& gt,
+                                      const std::vector<std::uint8_t>* mask) {
+    checkComparable(pred, gt, mask);
+    DisplayDifferences s;
     const std::size_t pixels = std::size_t(gt.width) * gt.height;
     for (std::size_t p = 0; p < pixels; ++p) {
         if (!counts(mask, p)) continue;
         for (std::size_t i = 3 * p; i < 3 * p + 3; ++i) {
             const double d = displayValue(pred.pixels[i]) - displayValue(gt.pixels[i]);
-            squaredError += d * d;
+            s.sum += d;
+            s.squares += d * d;
         }
-        values += 3;
+        s.values += 3;
     }
-    if (values == 0) return kNaN;
-    if (squaredError == 0.0) return std::numeric_limits<double>::infinity();
-    return -10.0 * std::log10(squaredError / double(values));  // peak 1: 10 log10(1 / MSE)
+    return s;
+}
+
+double psnrOf(const DisplayDifferences& s) {
+    if (s.values == 0) return kNaN;
+    if (s.squares == 0.0) return std::numeric_limits<double>::infinity();
+    return -10.0 * std::log10(s.squares / double(s.values));  // peak 1: 10 log10(1 / MSE)
+}
+
+double biasOf(const DisplayDifferences& s) {
+    return s.values == 0 ? kNaN : s.sum / double(s.values);
+}
+
+}  // namespace
+
+double psnr(const ImageRGB& pred, const ImageRGB& gt, const std::vector<std::uint8_t>* mask) {
+    return psnrOf(displayDifferences(pred, gt, mask));
 }
 
 double displayBias(const ImageRGB& pred, const ImageRGB& gt,
                    const std::vector<std::uint8_t>* mask) {
-    checkComparable(pred, gt, mask);
-    double sum = 0.0;
-    std::size_t values = 0;
-    const std::size_t pixels = std::size_t(gt.width) * gt.height;
-    for (std::size_t p = 0; p < pixels; ++p) {
-        if (!counts(mask, p)) continue;
-        for (std::size_t i = 3 * p; i < 3 * p + 3; ++i)
-            sum += displayValue(pred.pixels[i]) - displayValue(gt.pixels[i]);
-        values += 3;
-    }
-    return values == 0 ? kNaN : sum / double(values);
+    return biasOf(displayDifferences(pred, gt, mask));
 }
 
 double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
@@ -200,8 +215,9 @@ EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
         m.logLuminanceObserved = logLuminanceRmse(pred, gt, mask);
         std::vector<std::uint8_t> unobserved(mask->size());
         for (std::size_t p = 0; p < unobserved.size(); ++p) unobserved[p] = (*mask)[p] == 0;
-        m.psnrUnobserved = psnr(pred, gt, &unobserved);
-        m.displayBiasUnobserved = displayBias(pred, gt, &unobserved);
+        const DisplayDifferences invented = displayDifferences(pred, gt, &unobserved);
+        m.psnrUnobserved = psnrOf(invented);
+        m.displayBiasUnobserved = biasOf(invented);
     }
     m.radianceRatio = meanRadianceRatio(pred, gt);
     return m;
