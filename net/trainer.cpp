@@ -318,6 +318,8 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
     Augmentation a;
     if (o.augment) {
         a = drawAugmentation(rng);
+        // Expose the unclipped renders, then clip, as a camera does (net/training_data.h).
+        useUnclippedViews(ex);
         augmentPhoto(ex.ref, a, rng);
         augmentPhoto(ex.src, a, rng);
         augmentPhoto(ex.tgt, a, rng);

@@ -93,4 +93,20 @@ TrainingExample loadExample(const std::string& directory, bool withMasks) {
     return ex;
 }
 
+bool useUnclippedViews(TrainingExample& ex) {
+    const fs::path dir(ex.directory);
+    const char* views[3] = {"ref", "src", "tgt"};
+    ImageRGB* images[3] = {&ex.ref, &ex.src, &ex.tgt};
+    for (const char* view : views)
+        if (!fs::is_regular_file(dir / dataset::viewExr(view))) return false;
+    ImageRGB unclipped[3];
+    for (int v = 0; v < 3; ++v) {
+        unclipped[v] = readImage((dir / dataset::viewExr(views[v])).string());
+        if (unclipped[v].width != images[v]->width || unclipped[v].height != images[v]->height)
+            return false;
+    }
+    for (int v = 0; v < 3; ++v) *images[v] = std::move(unclipped[v]);
+    return true;
+}
+
 }  // namespace lh::net

@@ -158,6 +158,40 @@ TEST(TrainingData, ReadsADevCyclesStyleExampleAndComputesMissingMasks) {
     EXPECT_EQ(ex.masks[1], onlyFirst);  // shipped: read as it is, not recomputed
 }
 
+// The views' EXR renders hold a lamp of 4 at pixel (0, 0) that the PNGs clip to 1: training
+// exposes those, so that a darker exposure still clips the lamp (tests/net/
+// training_inputs_test.cpp has the augmentation's side).
+TEST(TrainingData, UnclippedViewsReplaceThePngsWhereAllThreeExist) {
+    ScratchDir scratch("unclipped");
+    const fs::path dir = writeExample(scratch.path);
+    ImageRGB png(40, 30), exr(40, 30);
+    std::fill(png.pixels.begin(), png.pixels.end(), 0.2f);
+    std::fill(exr.pixels.begin(), exr.pixels.end(), 0.2f);
+    std::fill_n(png.at(0, 0), 3, 1.f);
+    std::fill_n(exr.at(0, 0), 3, 4.f);
+    for (const char* view : {"ref", "src", "tgt"}) {
+        writePng(png, (dir / (std::string(view) + ".png")).string());
+        writeExr(exr, (dir / (std::string(view) + ".exr")).string());
+    }
+    TrainingExample ex = loadExample(dir.string());
+    EXPECT_FLOAT_EQ(ex.ref.at(0, 0)[0], 1.f);  // what predict and eval see
+    ASSERT_TRUE(useUnclippedViews(ex));
+    for (const ImageRGB* view : {&ex.ref, &ex.src, &ex.tgt}) {
+        EXPECT_FLOAT_EQ(view->at(0, 0)[0], 4.f);
+        EXPECT_FLOAT_EQ(view->at(5, 5)[1], 0.2f);
+    }
+
+    // Without all three EXRs, or with one of another size, the PNG views stay.
+    fs::remove(dir / "tgt.exr");
+    TrainingExample partial = loadExample(dir.string());
+    EXPECT_FALSE(useUnclippedViews(partial));
+    EXPECT_FLOAT_EQ(partial.ref.at(0, 0)[0], 1.f);
+    writeExr(ImageRGB(20, 15), (dir / "tgt.exr").string());
+    EXPECT_FALSE(useUnclippedViews(partial));
+    EXPECT_FLOAT_EQ(partial.ref.at(0, 0)[0], 1.f);
+    EXPECT_FLOAT_EQ(partial.tgt.at(0, 0)[0], 1.f);
+}
+
 TEST(TrainingData, WithoutMasksNeedsNeitherPositionsNorDepth) {
     ScratchDir scratch("no_masks");
     const fs::path dir = writeExample(scratch.path, /*withDepth=*/false);

@@ -41,6 +41,22 @@ TEST(Augment, PhotosClipAndQuantiseWhileTargetsScale) {
     EXPECT_FLOAT_EQ(target.at(0, 0)[2], 0.2f);
 }
 
+// Why training exposes the views' unclipped EXRs (net/training_data.h): a lamp of 4 exposed
+// 0.6x is 2.4 and clips at 1, as a camera shows it; the same lamp from a PNG, already clipped
+// to 1, would become a flat 0.6 whose saturation the network could not see.
+TEST(Augment, AnUnclippedLampStaysClippedAtALowerExposure) {
+    Augmentation darker;
+    darker.exposure = 0.6;
+    ImageRGB fromExr(1, 1), fromPng(1, 1);
+    fromExr.pixels = {4.f, 4.f, 4.f};
+    fromPng.pixels = {1.f, 1.f, 1.f};
+    Random rng(2);
+    augmentPhoto(fromExr, darker, rng);
+    augmentPhoto(fromPng, darker, rng);
+    EXPECT_FLOAT_EQ(fromExr.at(0, 0)[0], 1.f);
+    EXPECT_NEAR(fromPng.at(0, 0)[0], 0.6f, 0.01f);
+}
+
 TEST(Augment, JpegKeepsSmoothContentAndBlursSharpEdges) {
     // A smooth ramp survives JPEG at quality 90 within a few code values; a one-pixel
     // checkerboard of two colours (all high frequency, in the chroma JPEG subsamples below
