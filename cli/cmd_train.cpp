@@ -77,6 +77,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "Weight of the squared sRGB error of envmaps (what PSNR scores) beside the L1 "
                     "losses; 0: off")
         ->capture_default_str();
+    cmd->add_option("--view-hdr-weight", o->viewHdrWeight,
+                    "Weight of the HDR loss (log radiance) of the MPI's held-out view against its "
+                    "unclipped render tgt.exr: it teaches how bright clipped windows and lamps "
+                    "are; 0: off")
+        ->capture_default_str();
     cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")
         ->capture_default_str();
     cmd->add_option("--validation-scenes", o->validationScenes,

@@ -54,6 +54,8 @@ void TrainOptions::validate() const {
         throw InputError("--irradiance-weight must be in [0, 100]");
     if (!(envmapSquaredWeight >= 0 && envmapSquaredWeight <= 100))
         throw InputError("--envmap-mse-weight must be in [0, 100]");
+    if (!(viewHdrWeight >= 0 && viewHdrWeight <= 100))
+        throw InputError("--view-hdr-weight must be in [0, 100]");
     if (batch % distributed.worldSize != 0)
         throw InputError(
             "--batch " + std::to_string(batch) + " must be a multiple of the world size " +
@@ -305,6 +307,8 @@ struct PreparedExample {
     PairInputs inputs;
     PinholeCamera target;
     torch::Tensor targetImage;           // [1, 3, H, W] linear, the held-out view
+    torch::Tensor targetHdr;             // [1, 3, H, W] its unclipped radiance; undefined
+                                         // without tgt.exr
     torch::Tensor refDepth;              // [1, 1, H, W] metres; undefined without depth.exr
     std::vector<torch::Tensor> oracle;   // cubes; empty without oracle.vdb
     std::vector<torch::Tensor> envmaps;  // [1, 3, h, w] linear HDR at the training size
@@ -315,21 +319,31 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
                                const TrainOptions& o, Random& rng, const torch::Device& device,
                                bool direct) {
     TrainingExample ex = loadExample(directory);
-    Augmentation a;
-    if (o.augment) {
-        a = drawAugmentation(rng);
-        // Expose the unclipped renders, then clip, as a camera does (net/training_data.h).
-        useUnclippedViews(ex);
+    Augmentation a;  // the identity unless augmenting
+    if (o.augment) a = drawAugmentation(rng);
+    // Expose the unclipped renders where the example has them, then clip, as a camera does
+    // (net/training_data.h); without augmentation that gives the PNGs' values again.
+    const bool unclipped = useUnclippedViews(ex);
+    ImageRGB targetHdr;
+    if (unclipped) {
+        targetHdr = ex.tgt;
+        augmentRadiance(targetHdr, a);
+    }
+    if (o.augment || unclipped) {
         augmentPhoto(ex.ref, a, rng);
         augmentPhoto(ex.src, a, rng);
         augmentPhoto(ex.tgt, a, rng);
-        for (auto& e : ex.envmaps) augmentRadiance(e, a);
     }
+    if (o.augment)
+        for (auto& e : ex.envmaps) augmentRadiance(e, a);
     PreparedExample p;
     p.inputs = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
                               *ex.cameras.far, config, device);
     p.target = ex.cameras.tgt->resized(config.width, config.height);
     p.targetImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
+    if (unclipped)
+        p.targetHdr =
+            imageToTensor(resizeImage(targetHdr, config.width, config.height)).to(device);
     for (size_t e = 0; e < ex.envmaps.size(); ++e) {
         p.envmaps.push_back(
             imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight))
@@ -505,6 +519,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                      : std::string("L1 + gradients (substitute for VGG-19)"))
              << "; envmaps also " << o.irradianceWeight << " x irradiance";
     if (o.envmapSquaredWeight > 0) progress << ", " << o.envmapSquaredWeight << " x squared sRGB";
+    if (o.viewHdrWeight > 0)
+        progress << "; views also " << o.viewHdrWeight << " x HDR (unclipped tgt.exr)";
     progress << "\n";
     const auto lossOf = [&](const torch::Tensor& predicted, const torch::Tensor& target) {
         return vgg ? (*vgg)(predicted, target) : imageLoss(predicted, target);
@@ -543,8 +559,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
 
             clock = std::chrono::steady_clock::now();
             const PipelineOutput out = s.net->run(ex.inputs, stage >= 2);
-            const auto viewLoss = lossOf(
-                renderMpiView(out.mpi, ex.inputs.depths, ex.inputs.ref, ex.target), ex.targetImage);
+            const auto view = renderMpiView(out.mpi, ex.inputs.depths, ex.inputs.ref, ex.target);
+            auto viewLoss = lossOf(view, ex.targetImage);
+            if (o.viewHdrWeight > 0 && ex.targetHdr.defined())
+                viewLoss = viewLoss + o.viewHdrWeight * hdrImageLoss(view, ex.targetHdr);
             auto loss = viewLoss;
             torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}),
                           discLoss = torch::zeros({});

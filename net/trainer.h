@@ -75,6 +75,12 @@ struct TrainOptions {
     // own quantity) beside the L1 losses; 0: off. Its values are ~0.03 where L1's are ~0.15,
     // so a weight of a few units is needed to move the L1's median towards the mean.
     double envmapSquaredWeight = 0.0;
+    // Weight of the HDR view loss (net/losses.h hdrImageLoss: L1 of ln(1 + radiance)) of the
+    // MPI's rendering of the held-out view against that view's unclipped render (tgt.exr,
+    // where the example has it). The clamped image loss cannot see a window brighter than 1;
+    // this term is what tells the MPI how far to boost the pixels where the photo saturated.
+    // 0: off.
+    double viewHdrWeight = 0.0;
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

@@ -162,6 +162,22 @@ TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, TheViewHdrWeightSteersTraining) {
+    // The tiny set's examples carry tgt.exr: with the HDR view loss on, the MPI's gradients
+    // differ, so do the weights, and the log names the term; a negative weight is refused.
+    ASSERT_TRUE(fs::is_regular_file(fs::path(dataDir()) / "000000" / "tgt.exr"));
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_view_hdr", 0.0, 4.0,
+                  [](TrainOptions& o, double w) { o.viewHdrWeight = w; }, log),
+              1e-6)
+        << "the HDR view weight changed nothing";
+    EXPECT_NE(log.str().find("views also 4 x HDR"), std::string::npos) << log.str();
+    TrainOptions negative = options("lighthouse_trainer_view_hdr_negative");
+    negative.viewHdrWeight = -1.0;
+    EXPECT_THROW(negative.validate(), InputError);
+}
+
 TEST_F(TrainerTest, TheEnvmapSquaredErrorWeightSteersTraining) {
     // As the irradiance weight: off and strong give different weights, and the log says the
     // term is on; a negative weight and one above 100 are refused.
