@@ -16,8 +16,10 @@
 #      fine-tuned from step 6's model;
 #   8. the `wide` configuration widened from step 7 (--init-widen: the same predictions),
 #      1000 iterations of batch 2 on 3600 scenes (seeds 4400-7999), then 600 more on those
-#      of them without over-exposed envmaps (--max-clipped 0.1). Its half-precision moving
-#      average is the committed model, copied to models/standard.pt.
+#      of them without over-exposed envmaps (--max-clipped 0.1);
+#   9. 1000 more iterations on those scenes with the HDR view loss (--view-hdr-weight 5; the
+#      photos are exposed from the views' unclipped EXRs). Its half-precision moving average
+#      is the committed model, copied to models/standard.pt.
 # The bundled model was trained while the code gained its last losses and augmentations
 # (models/README.md says at which iterations); with today's code this is one run.
 # WORK (default /work/lighthouse-train) holds the data, the checkpoint and the logs.
@@ -85,8 +87,13 @@ step8=(--threads 1 train --data "$work/data/train_v3all" --max-clipped 0.1 --con
        --init "$work/wide.pt" --checkpoint "$work/step8.checkpoint" --iterations 600
        --lr 1e-4 --seed 53 --validate-every 300 "${progress[@]}" --envmap-mse-weight 24)
 "$bin" "${step8[@]}" -o "$work/step8.pt"
-"$bin" "${step8[@]}" -o "$work/step8_half.pt" --half
-cp "$work/step8_half.pt" models/standard.pt
+step9=(--threads 1 train --data "$work/data/train_v3all" --max-clipped 0.1 --config wide
+       --init "$work/step8.pt" --checkpoint "$work/step9.checkpoint" --iterations 1000
+       --lr 1e-4 --seed 59 --validate-every 300 "${progress[@]}" --envmap-mse-weight 24
+       --view-hdr-weight 5)
+"$bin" "${step9[@]}" -o "$work/step9.pt"
+"$bin" "${step9[@]}" -o "$work/step9_half.pt" --half
+cp "$work/step9_half.pt" models/standard.pt
 cp "$work/v3.pt.csv" models/standard_training_log.csv
 cp "$work/v3.pt.png" models/standard_training_curves.png
 cp "$work/standard.pt.csv" models/standard_finetune_log.csv
@@ -97,3 +104,5 @@ cp "$work/step7.pt.csv" models/standard_step7_log.csv
 cp "$work/step7.pt.png" models/standard_step7_curves.png
 cp "$work/step8.pt.csv" models/standard_step8_log.csv
 cp "$work/step8.pt.png" models/standard_step8_curves.png
+cp "$work/step9.pt.csv" models/standard_step9_log.csv
+cp "$work/step9.pt.png" models/standard_step9_curves.png
