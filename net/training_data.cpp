@@ -7,6 +7,7 @@
 #include "net/observed_mask.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 
@@ -104,6 +105,9 @@ bool useUnclippedViews(TrainingExample& ex) {
         unclipped[v] = readImage((dir / dataset::viewExr(views[v])).string());
         if (unclipped[v].width != images[v]->width || unclipped[v].height != images[v]->height)
             return false;
+        // A NaN would survive the clip and reach the network; the PNG is the safer photo.
+        for (const float value : unclipped[v].pixels)
+            if (std::isnan(value)) return false;
     }
     for (int v = 0; v < 3; ++v) *images[v] = std::move(unclipped[v]);
     return true;

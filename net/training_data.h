@@ -33,7 +33,7 @@ std::vector<std::string> listExamples(const std::string& dataDir);
 TrainingExample loadExample(const std::string& directory, bool withMasks = false);
 
 // Replaces ref, src and tgt by the example's linear EXR renders (ref.exr, src.exr, tgt.exr)
-// where it has all three, of the PNGs' sizes; returns whether it did. Training augments
+// where it has all three, of the PNGs' sizes and free of NaN; returns whether it did. Training augments
 // exposure: a camera that exposes a scene 0.6x still clips its windows at 1, but a clipped PNG
 // scaled by 0.6 shows them as flat grey at 0.6, which no camera gives, and which hides where
 // the photo saturated from the network's HDR boost. Throws FileError if an EXR is unreadable.

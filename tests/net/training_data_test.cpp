@@ -17,6 +17,7 @@
 #include <unistd.h>
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -181,7 +182,13 @@ TEST(TrainingData, UnclippedViewsReplaceThePngsWhereAllThreeExist) {
         EXPECT_FLOAT_EQ(view->at(5, 5)[1], 0.2f);
     }
 
-    // Without all three EXRs, or with one of another size, the PNG views stay.
+    // Without all three EXRs, with one of another size, or with a NaN, the PNG views stay.
+    ImageRGB broken = exr;
+    broken.at(3, 3)[1] = std::numeric_limits<float>::quiet_NaN();
+    writeExr(broken, (dir / "src.exr").string());
+    TrainingExample withNan = loadExample(dir.string());
+    EXPECT_FALSE(useUnclippedViews(withNan));
+    EXPECT_FLOAT_EQ(withNan.ref.at(0, 0)[0], 1.f);
     fs::remove(dir / "tgt.exr");
     TrainingExample partial = loadExample(dir.string());
     EXPECT_FALSE(useUnclippedViews(partial));
