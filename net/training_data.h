@@ -2,7 +2,7 @@
 // evaluation, and data sets of the same layout made elsewhere (dev_cycles, rendered by
 // Blender Cycles: no env_K_mask.png, no scene.json). The network sees what a user's camera
 // gives: the 8-bit PNG views, decoded from sRGB; ground-truth envmaps are the linear HDR EXRs.
-// Augmented training starts from the views' EXR renders instead and clips them itself.
+// Training starts from the views' EXR renders instead, where they exist, and clips them itself.
 #pragma once
 
 #include "core/camera.h"
@@ -33,10 +33,11 @@ std::vector<std::string> listExamples(const std::string& dataDir);
 TrainingExample loadExample(const std::string& directory, bool withMasks = false);
 
 // Replaces ref, src and tgt by the example's linear EXR renders (ref.exr, src.exr, tgt.exr)
-// where it has all three, of the PNGs' sizes and free of NaN; returns whether it did. Training augments
-// exposure: a camera that exposes a scene 0.6x still clips its windows at 1, but a clipped PNG
-// scaled by 0.6 shows them as flat grey at 0.6, which no camera gives, and which hides where
-// the photo saturated from the network's HDR boost. Throws FileError if an EXR is unreadable.
+// where it has all three, of the PNGs' sizes and free of NaN; returns whether it did.
+// Training augments exposure: a camera that exposes a scene 0.6x still clips its windows at 1,
+// but a clipped PNG scaled by 0.6 shows them as flat grey at 0.6, which no camera gives, and
+// which hides where the photo saturated from the network's HDR boost. Throws FileError if an
+// EXR is unreadable.
 bool useUnclippedViews(TrainingExample& ex);
 
 }  // namespace lh::net
