@@ -40,7 +40,7 @@ struct PredictOptions {
     bool alsoPng = false;
     float exposure = 1.f;
     bool half = false;
-    float pruneAlpha = net::kDefaultPruneAlpha;
+    float pruneAlpha = -1;  // the model's (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
 };
 
@@ -227,7 +227,8 @@ void runPredict(const PredictOptions& o, int threads) {
     }
     warnOfHalfClamping(saveVdb(o.output, &p.volume, &p.mpi, VolumeSaveOptions{o.half}), "--half");
     std::cerr << "predict: network " << p.seconds << " s; " << p.volume.activeVoxelCount()
-              << " active voxels, MPI of " << p.mpi.planeCount() << " planes -> " << o.output
+              << " active voxels (alpha >= " << predictor.pruneAlpha() << "), MPI of "
+              << p.mpi.planeCount() << " planes -> " << o.output
               << "\n";
     if (!points.empty()) {
         const RenderVolume prepared(p.volume);
@@ -268,8 +269,9 @@ void addPredictCommand(CLI::App& app, const int& threads) {
         "`lighthouse merge OUT` writes predictions.json of all shards");
     cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
     cmd->add_option("--prune-alpha", o->pruneAlpha,
-                    "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly all)")
-        ->capture_default_str();
+                    "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly "
+                    "all). Default: the threshold the model was trained under, else 0.03")
+        ->check(CLI::Range(0.0f, 1.0f));
     cmd->add_option("--device", o->device,
                     "cpu, or cuda with a CUDA build of libtorch (not yet tested on a GPU)")
         ->capture_default_str();

@@ -82,6 +82,12 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "unclipped render tgt.exr: it teaches how bright clipped windows and lamps "
                     "are; 0: off")
         ->capture_default_str();
+    cmd->add_option("--prune-alpha", o->pruneAlpha,
+                    "Train under pruning: render the envmaps with voxels of alpha below this left "
+                    "empty (gradients straight through), so the model learns opaque walls and "
+                    "empty rooms; the model records it and predict prunes there by default; "
+                    "0: off")
+        ->capture_default_str();
     cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")
         ->capture_default_str();
     cmd->add_option("--validation-scenes", o->validationScenes,

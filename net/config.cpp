@@ -115,6 +115,8 @@ void NetConfig::validate() const {
         throw InputError("MPI network must be '2d' or '3d', got '" + mpiNetwork + "'");
     if (mpiWidth < 4 || mpiWidth > 256) throw InputError("MPI network width must be in [4, 256]");
     if (colourAnchor && !hdr) throw InputError("the colour anchor needs HDR colours");
+    if (!(pruneAlpha >= 0 && pruneAlpha < 1))
+        throw InputError("the model's pruning threshold (voxel alpha) must be in [0, 1)");
     if (completionScale != 1 && completionScale != 2)
         throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
@@ -139,15 +141,18 @@ std::string NetConfig::toJson() const {
                               {"completion_scale", completionScale},
                               {"hdr", hdr},
                               {"colour_anchor", colourAnchor},
-                              {"height_profile", heightProfile}};
+                              {"height_profile", heightProfile},
+                              {"prune_alpha", pruneAlpha}};
     return j.dump();
 }
 
 bool NetConfig::sameParameters(const NetConfig& other) const {
-    // Everything but the name and the colour anchor shapes the parameters.
+    // Everything but the name, the colour anchor and the pruning threshold shapes the
+    // parameters.
     NetConfig a = *this, b = other;
     a.name = b.name;
     a.colourAnchor = b.colourAnchor;
+    a.pruneAlpha = b.pruneAlpha;
     return a.toJson() == b.toJson();
 }
 
@@ -172,6 +177,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.hdr = j.value("hdr", false);
         c.colourAnchor = j.value("colour_anchor", false);
         c.heightProfile = j.value("height_profile", false);
+        c.pruneAlpha = j.value("prune_alpha", 0.0);
     } catch (const nlohmann::json::exception& e) {
         throw FileError(sourceName + ": network configuration is not valid: " + e.what());
     }

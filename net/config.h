@@ -45,6 +45,10 @@ struct NetConfig {
     // The completion networks also see the observed colour at each height of the room
     // (net/height_profile.h): 4 more input channels each. Named by a "+profile" suffix.
     bool heightProfile = false;
+    // Voxel alpha below which the model's volumes are left empty: the threshold it was trained
+    // under (train --prune-alpha), so predict prunes there by default and the walls it learnt
+    // to make opaque survive. 0: trained unpruned; predict uses its own default.
+    double pruneAlpha = 0;
 
     static NetConfig small();
     static NetConfig paper();

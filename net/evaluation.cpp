@@ -195,7 +195,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
               {"scenes", dirs.size()},
               {"max_scenes", o.maxScenes},
               {"methods", methodNames},
-              {"prune_alpha", o.pruneAlpha}}},
+              {"prune_alpha", predictor.pruneAlpha()}}},
             {"csv", "metrics." + tag + ".csv"},
             {"sheet_rows", strips},
             {"examples", shardExamples},

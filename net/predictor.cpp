@@ -70,9 +70,8 @@ struct Predictor::Impl {
 Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<Impl>()) {
     setTorchThreads(options.threads);
     impl_->device = selectDevice(options.device);
-    if (!(options.pruneAlpha >= 0 && options.pruneAlpha < 1))
+    if (!(options.pruneAlpha < 1) || std::isnan(options.pruneAlpha))
         throw InputError("--prune-alpha must be in [0, 1)");
-    impl_->pruneAlpha = options.pruneAlpha;
     if (!options.untrainedConfig.empty()) {
         impl_->net = LighthouseNet(NetConfig::byName(options.untrainedConfig));
         impl_->net->to(impl_->device);
@@ -81,7 +80,13 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
         impl_->net =
             loadModel(options.model.empty() ? defaultModelPath() : options.model, impl_->device);
     }
+    const double trainedUnder = impl_->net->config.pruneAlpha;
+    impl_->pruneAlpha = options.pruneAlpha >= 0 ? options.pruneAlpha
+                        : trainedUnder > 0      ? float(trainedUnder)
+                                                : kDefaultPruneAlpha;
 }
+
+float Predictor::pruneAlpha() const { return impl_->pruneAlpha; }
 
 Predictor::~Predictor() = default;
 

@@ -58,8 +58,9 @@ struct PredictorOptions {
     // a model file, so both configurations can be timed without training the paper-sized one.
     std::string untrainedConfig;
     // Voxels of the completed volume whose opacity over one voxel is below this are left
-    // empty; 0 keeps everything down to volume_export.h's 1e-4.
-    float pruneAlpha = kDefaultPruneAlpha;
+    // empty; 0 keeps everything down to volume_export.h's 1e-4. Negative: the threshold the
+    // model was trained under (train --prune-alpha), else kDefaultPruneAlpha.
+    float pruneAlpha = -1;
 };
 
 // The bundled model's path.
@@ -73,6 +74,7 @@ public:
     Predictor& operator=(const Predictor&) = delete;
 
     const NetConfig& config() const;
+    float pruneAlpha() const;  // the threshold in use
     Prediction predict(const StereoPair& pair) const;
 
 private:

@@ -56,6 +56,7 @@ void TrainOptions::validate() const {
         throw InputError("--envmap-mse-weight must be in [0, 100]");
     if (!(viewHdrWeight >= 0 && viewHdrWeight <= 100))
         throw InputError("--view-hdr-weight must be in [0, 100]");
+    if (!(pruneAlpha >= 0 && pruneAlpha < 1)) throw InputError("--prune-alpha must be in [0, 1)");
     if (batch % distributed.worldSize != 0)
         throw InputError(
             "--batch " + std::to_string(batch) + " must be a multiple of the world size " +
@@ -283,7 +284,8 @@ std::pair<double, double> validate(LighthouseNet& net, const std::vector<Trainin
         for (size_t e = 0; e < ex.envmaps.size(); ++e) {
             const auto& gt = ex.envmaps[e];
             const ImageRGB pred = tensorToImage(
-                renderEnvmapTorch(out.cubes, in.layout, ex.cameras.envmaps[e].position, gt.width,
+                renderEnvmapTorch(pruneCubesStraightThrough(out.cubes, net->config.pruneAlpha),
+                                  in.layout, ex.cameras.envmaps[e].position, gt.width,
                                   gt.height, net->config.samplesPerLevel));
             const EnvmapMetrics m = compareEnvmaps(pred, gt);
             psnrs.push_back(m.psnrAll);
@@ -418,7 +420,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         fs::create_directories(fs::path(o.out).parent_path());
 
     TrainingState s;
-    s.net = LighthouseNet(o.configOverride ? *o.configOverride : NetConfig::byName(o.config));
+    NetConfig netConfig = o.configOverride ? *o.configOverride : NetConfig::byName(o.config);
+    netConfig.pruneAlpha = o.pruneAlpha;
+    s.net = LighthouseNet(netConfig);
     s.net->to(device);
     s.average = LighthouseNet(s.net->config);
     s.average->to(device);
@@ -521,6 +525,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.envmapSquaredWeight > 0) progress << ", " << o.envmapSquaredWeight << " x squared sRGB";
     if (o.viewHdrWeight > 0)
         progress << "; views also " << o.viewHdrWeight << " x HDR (unclipped tgt.exr)";
+    if (o.pruneAlpha > 0)
+        progress << "; envmaps rendered with voxels of alpha below " << o.pruneAlpha
+                 << " pruned (straight-through)";
     progress << "\n";
     const auto lossOf = [&](const torch::Tensor& predicted, const torch::Tensor& target) {
         return vgg ? (*vgg)(predicted, target) : imageLoss(predicted, target);
@@ -576,9 +583,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                 // for one or all, and each one is a room seen from another point. The adversarial
                 // stage uses the one drawn for this iteration.
                 torch::Tensor env;
+                const auto renderedCubes = pruneCubesStraightThrough(out.cubes, o.pruneAlpha);
                 for (size_t k = 0; k < ex.envmaps.size(); ++k) {
                     const auto rendered = renderEnvmapTorch(
-                        out.cubes, ex.inputs.layout, ex.envmapPositions[k], config.trainEnvWidth,
+                        renderedCubes, ex.inputs.layout, ex.envmapPositions[k], config.trainEnvWidth,
                         config.trainEnvHeight, config.samplesPerLevel);
                     envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) +
                               hdrImageLoss(rendered, ex.envmaps[k]) +

@@ -81,6 +81,12 @@ struct TrainOptions {
     // this term is what tells the MPI how far to boost the pixels where the photo saturated.
     // 0: off.
     double viewHdrWeight = 0.0;
+    // Train under pruning: the envmaps of the losses and of validation are rendered from the
+    // cubes with every voxel of alpha below this left empty, as predict will leave them, with
+    // straight-through gradients (net/volume_render.h). The model records it, and predict
+    // prunes there by default. A model that keeps its light through a high threshold has
+    // opaque walls and empty rooms, which the envmap renderer skips. 0: off.
+    double pruneAlpha = 0.0;
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

@@ -110,4 +110,19 @@ torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const V
     return radiance.view({1, 3, height, width});
 }
 
+std::vector<torch::Tensor> pruneCubesStraightThrough(const std::vector<torch::Tensor>& cubes,
+                                                     double minAlpha) {
+    if (!(minAlpha > 0)) return cubes;
+    std::vector<torch::Tensor> pruned;
+    pruned.reserve(cubes.size());
+    for (const auto& cube : cubes) {
+        const auto alpha = cube.narrow(1, 3, 1);
+        const auto kept = alpha * (alpha >= minAlpha).to(alpha.dtype());
+        // Forward: the pruned alpha; backward: the identity.
+        const auto straightThrough = alpha + (kept - alpha).detach();
+        pruned.push_back(torch::cat({cube.narrow(1, 0, 3), straightThrough}, 1));
+    }
+    return pruned;
+}
+
 }  // namespace lh::net

@@ -27,4 +27,11 @@ torch::Tensor envmapDirections(int width, int height);
 torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const VolumeLayout& layout,
                                 const Vec3d& position, int width, int height, int samplesPerLevel);
 
+// The cubes as predict exports them at pruning threshold `minAlpha` (net/volume_export.h):
+// voxels whose alpha is below it are empty. The gradient passes as if nothing were pruned
+// (straight-through), so a loss that needs a pruned voxel's light can still raise its alpha
+// above the threshold. minAlpha <= 0 returns the cubes unchanged.
+std::vector<torch::Tensor> pruneCubesStraightThrough(const std::vector<torch::Tensor>& cubes,
+                                                     double minAlpha);
+
 }  // namespace lh::net

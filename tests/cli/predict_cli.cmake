@@ -126,3 +126,10 @@ add_test(NAME cli.grammar_net
   COMMAND bash ${LH_CLI_SCRIPTS}/grammar_net_test.sh ${LH_CLI_EXE} ${CMAKE_CURRENT_BINARY_DIR}/grammar_net
           "${LH_GRAMMAR_PAIR}")
 set_tests_properties(cli.grammar_net PROPERTIES TIMEOUT 300 LABELS cli)
+# A negative pruning threshold is refused by the option itself (negative means "the model's"
+# only inside the library).
+lighthouse_cli_error(predict_negative_prune_alpha
+  EXPECT "--prune-alpha"
+  ABSENT pred_negative_prune.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --prune-alpha -0.5 -o pred_negative_prune.vdb)

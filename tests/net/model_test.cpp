@@ -172,6 +172,27 @@ TEST(Model, ColourAnchorPaintsInventedColoursInThePhotosMeanColour) {
     EXPECT_FALSE(NetConfig::fromJson(legacy, "test").colourAnchor);
 }
 
+TEST(Model, ThePruningThresholdTravelsWithTheModelAndShapesNoParameter) {
+    NetConfig pruned = tinyConfig();
+    pruned.pruneAlpha = 0.2;
+    EXPECT_TRUE(pruned.sameParameters(tinyConfig()));  // train --init fine-tunes across it
+    EXPECT_DOUBLE_EQ(NetConfig::fromJson(pruned.toJson(), "test").pruneAlpha, 0.2);
+    torch::manual_seed(3);
+    LighthouseNet net(pruned);
+    const std::string path = test::uniqueTempPath("lighthouse_model_prune_test.pt");
+    saveModel(net, path, true);
+    EXPECT_DOUBLE_EQ(loadModel(path, torch::Device(torch::kCPU))->config.pruneAlpha, 0.2);
+    std::filesystem::remove(path);
+    // Models written before the key existed were trained unpruned.
+    std::string legacy = pruned.toJson();
+    const std::string key = ",\"prune_alpha\":0.2";
+    ASSERT_NE(legacy.find(key), std::string::npos) << legacy;
+    legacy.erase(legacy.find(key), key.size());
+    EXPECT_EQ(NetConfig::fromJson(legacy, "test").pruneAlpha, 0.0);
+    pruned.pruneAlpha = 1.0;
+    EXPECT_THROW(pruned.validate(), InputError);
+}
+
 TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
     torch::manual_seed(3);
     LighthouseNet net(tinyConfig());

@@ -195,5 +195,61 @@ TEST(TrainingRenderer, HomogeneousMediumMatchesTheAnalyticAnswer) {
         }
 }
 
+TEST(TrainingRenderer, PruningInTrainingRendersWhatPredictExportsWithStraightThroughGradients) {
+    // The test volume in a faint fog (alpha 0.05) pruned at 0.1: the forward pass holds the
+    // alphas predict would export, so the training render agrees with the ray marcher over
+    // the exported volume and loses the fog's light; the backward pass is the identity, so a
+    // loss can still raise a pruned voxel above the threshold.
+    const VolumeLayout layout = VolumeLayout::fromFarDepth(2.0, 2, 32);
+    std::vector<torch::Tensor> cubes = testCubes(layout);
+    for (auto& cube : cubes) {
+        const auto empty = cube.narrow(1, 3, 1) == 0;
+        cube.narrow(1, 3, 1).masked_fill_(empty, 0.05);
+        cube.narrow(1, 0, 3).masked_fill_(empty.expand({1, 3, -1, -1, -1}), 0.6);
+        cube.requires_grad_(true);
+    }
+    const double threshold = 0.1;
+    const auto pruned = pruneCubesStraightThrough(cubes, threshold);
+    ASSERT_EQ(pruned.size(), cubes.size());
+    for (size_t k = 0; k < cubes.size(); ++k) {
+        const auto alpha = cubes[k].narrow(1, 3, 1).detach();
+        const auto expected = torch::where(alpha >= threshold, alpha, torch::zeros_like(alpha));
+        EXPECT_TRUE(torch::equal(pruned[k].narrow(1, 3, 1).detach(), expected)) << "level " << k;
+        EXPECT_TRUE(torch::equal(pruned[k].narrow(1, 0, 3).detach(),
+                                 cubes[k].narrow(1, 0, 3).detach()));
+    }
+
+    const Vec3d p(0.0, 0.0, 0.3);
+    const auto torchEnv = renderEnvmapTorch(pruned, layout, p, 64, 32, 256);
+    EnvmapOptions options;
+    options.width = 64;
+    options.height = 32;
+    options.march.stepVoxels = 0.25;
+    options.march.minTransmittance = 0;
+    const ImageRGB exported =
+        renderEnvmap(RenderVolume(cubesToVolume(cubes, layout, float(threshold))), p, options);
+    const ImageRGB foggy = tensorToImage(renderEnvmapTorch(cubes, layout, p, 64, 32, 256));
+    const ImageRGB prunedImage = tensorToImage(torchEnv);
+    double se = 0, seFog = 0, mean = 0;
+    for (size_t i = 0; i < exported.pixels.size(); ++i) {
+        se += std::pow(prunedImage.pixels[i] - exported.pixels[i], 2);
+        seFog += std::pow(foggy.pixels[i] - exported.pixels[i], 2);
+        mean += exported.pixels[i];
+    }
+    const double n = double(exported.pixels.size());
+    // As AgreesWithTheRayMarcher: 3% of the mean radiance; the fog is far more than that.
+    EXPECT_LT(std::sqrt(se / n), 0.03 * mean / n);
+    EXPECT_GT(std::sqrt(seFog / n), 0.1 * mean / n);
+
+    torchEnv.sum().backward();
+    for (size_t k = 0; k < cubes.size(); ++k) {
+        const auto grad = cubes[k].grad().narrow(1, 3, 1);
+        const auto fog = cubes[k].narrow(1, 3, 1).detach() < threshold;
+        // Pruned voxels in view of the point still receive the gradient of their light.
+        EXPECT_GT(grad.masked_select(fog).abs().max().item<double>(), 0.0) << "level " << k;
+    }
+    EXPECT_EQ(pruneCubesStraightThrough(cubes, 0.0)[0].data_ptr(), cubes[0].data_ptr());
+}
+
 }  // namespace
 }  // namespace lh::net

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 namespace lh::net {
@@ -120,6 +121,35 @@ TEST_F(PredictionTest, ImpossibleInputsAreRefusedWithAClearError) {
     StereoPair noSrc = planePair(0.2);
     noSrc.cameras.src.reset();
     EXPECT_THROW(predictor.predict(noSrc), InputError);
+}
+
+TEST_F(PredictionTest, PrunesAtTheThresholdTheModelWasTrainedUnderUnlessToldOtherwise) {
+    EXPECT_FLOAT_EQ(predictor.pruneAlpha(), kDefaultPruneAlpha);  // a model trained unpruned
+    NetConfig config = test::tinyConfig();
+    config.pruneAlpha = 0.4;
+    torch::manual_seed(5);
+    LighthouseNet net(config);
+    const std::string path = test::uniqueTempPath("lighthouse_prediction_pruned.pt");
+    saveModel(net, path);
+    const Predictor ownThreshold(PredictorOptions{path, "cpu", 2, ""});
+    PredictorOptions keepAll{path, "cpu", 2, ""};
+    keepAll.pruneAlpha = 0;
+    const Predictor unpruned(keepAll);
+    std::filesystem::remove(path);
+    EXPECT_FLOAT_EQ(ownThreshold.pruneAlpha(), 0.4f);
+    EXPECT_FLOAT_EQ(unpruned.pruneAlpha(), 0.0f);
+
+    const StereoPair pair = planePair(0.2);
+    const Prediction pruned = ownThreshold.predict(pair), all = unpruned.predict(pair);
+    ASSERT_TRUE(pruned.volume.layout.has_value());
+    long long kept = 0;
+    for (size_t k = 0; k < pruned.volume.levels.size(); ++k) {
+        const double voxel = pruned.volume.layout->voxelSize(int(k));
+        for (auto it = pruned.volume.levels[k].density->cbeginValueOn(); it; ++it, ++kept)
+            EXPECT_GE(1 - std::exp(-double(*it) * voxel), 0.4 - 1e-4);
+    }
+    EXPECT_GT(kept, 0);
+    EXPECT_GT(all.volume.activeVoxelCount(), std::size_t(kept));
 }
 
 TEST(PredictorOptionsTest, UnknownDeviceOrMissingModelIsAClearError) {

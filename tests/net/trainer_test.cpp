@@ -178,6 +178,26 @@ TEST_F(TrainerTest, TheViewHdrWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, TrainingUnderPruningSteersTrainingAndTheModelRecordsTheThreshold) {
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_prune", 0.0, 0.3,
+                  [](TrainOptions& o, double a) { o.pruneAlpha = a; }, log),
+              1e-6)
+        << "training under pruning changed nothing";
+    EXPECT_NE(log.str().find("alpha below 0.3 pruned"), std::string::npos) << log.str();
+    TrainOptions o = options("lighthouse_trainer_prune_record");
+    o.iterations = 1;
+    o.pruneAlpha = 0.3;
+    train(o, log);
+    EXPECT_DOUBLE_EQ(loadModel(o.out, torch::Device(torch::kCPU))->config.pruneAlpha, 0.3);
+    removeOutputs(o);
+    for (const double bad : {-0.1, 1.0}) {
+        o.pruneAlpha = bad;
+        EXPECT_THROW(o.validate(), InputError) << bad;
+    }
+}
+
 TEST_F(TrainerTest, TheEnvmapSquaredErrorWeightSteersTraining) {
     // As the irradiance weight: off and strong give different weights, and the log says the
     // term is on; a negative weight and one above 100 are refused.
