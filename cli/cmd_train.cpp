@@ -88,6 +88,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "empty rooms; the model records it and predict prunes there by default; "
                     "0: off")
         ->capture_default_str();
+    cmd->add_option("--alpha-binary-weight", o->alphaBinaryWeight,
+                    "Weight of the prior towards empty or opaque voxels (the mean of alpha (1 - "
+                    "alpha)); with --prune-alpha it asks for empty rooms and opaque walls, which "
+                    "render fastest; 0: off")
+        ->capture_default_str();
     cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")
         ->capture_default_str();
     cmd->add_option("--validation-scenes", o->validationScenes,

@@ -183,4 +183,13 @@ torch::Tensor sparsityLoss(const std::vector<torch::Tensor>& cubes) {
     return total / double(cubes.size());
 }
 
+torch::Tensor binaryAlphaLoss(const std::vector<torch::Tensor>& cubes) {
+    auto total = torch::zeros({}, cubes.front().options());
+    for (const auto& c : cubes) {
+        const auto alpha = c.narrow(1, 3, 1);
+        total = total + (alpha * (1 - alpha)).mean();
+    }
+    return total / double(cubes.size());
+}
+
 }  // namespace lh::net

@@ -57,6 +57,11 @@ torch::Tensor mpiExpectedDisparity(const torch::Tensor& mpi, const std::vector<d
 // A sparsity prior for training without 3D ground truth: the mean voxel alpha of every cube.
 torch::Tensor sparsityLoss(const std::vector<torch::Tensor>& cubes);
 
+// A prior towards empty or opaque voxels: the mean over the cubes of alpha (1 - alpha), 0 where
+// every voxel is empty or opaque, 0.25 at most. Fog is what empty-space skipping and early ray
+// termination cannot use; this asks each voxel to decide.
+torch::Tensor binaryAlphaLoss(const std::vector<torch::Tensor>& cubes);
+
 // A 4x4 convolution whose weight is divided by its largest singular value, estimated by one
 // power iteration per training forward pass (Miyato et al. 2018).
 struct SpectralConv2dImpl : torch::nn::Module {

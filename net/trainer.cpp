@@ -57,6 +57,8 @@ void TrainOptions::validate() const {
     if (!(viewHdrWeight >= 0 && viewHdrWeight <= 100))
         throw InputError("--view-hdr-weight must be in [0, 100]");
     if (!(pruneAlpha >= 0 && pruneAlpha < 1)) throw InputError("--prune-alpha must be in [0, 1)");
+    if (!(alphaBinaryWeight >= 0 && alphaBinaryWeight <= 1000))
+        throw InputError("--alpha-binary-weight must be in [0, 1000]");
     if (batch % distributed.worldSize != 0)
         throw InputError(
             "--batch " + std::to_string(batch) + " must be a multiple of the world size " +
@@ -528,6 +530,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.pruneAlpha > 0)
         progress << "; envmaps rendered with voxels of alpha below " << o.pruneAlpha
                  << " pruned (straight-through)";
+    if (o.alphaBinaryWeight > 0)
+        progress << "; cubes also " << o.alphaBinaryWeight << " x alpha (1 - alpha)";
     progress << "\n";
     const auto lossOf = [&](const torch::Tensor& predicted, const torch::Tensor& target) {
         return vgg ? (*vgg)(predicted, target) : imageLoss(predicted, target);
@@ -603,6 +607,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                     loss = loss + voxLoss;
                 }
                 if (!direct) loss = loss + kSparsityWeight * sparsityLoss(out.cubes);
+                if (o.alphaBinaryWeight > 0)
+                    loss = loss + o.alphaBinaryWeight * binaryAlphaLoss(out.cubes);
                 if (stage >= 3) {
                     // Discriminator step on real vs (detached) predicted envmaps, then the
                     // generator term. Data-parallel: one step per example of the rank's slice, on

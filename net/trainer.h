@@ -87,6 +87,10 @@ struct TrainOptions {
     // prunes there by default. A model that keeps its light through a high threshold has
     // opaque walls and empty rooms, which the envmap renderer skips. 0: off.
     double pruneAlpha = 0.0;
+    // Weight of the prior towards empty or opaque voxels (net/losses.h binaryAlphaLoss) on the
+    // cubes; with pruneAlpha, what asks for the empty rooms and opaque walls the renderer
+    // skips and stops at. 0: off.
+    double alphaBinaryWeight = 0.0;
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

@@ -185,6 +185,22 @@ TEST(Losses, MpiDepthLossIsZeroAtTheTrueDepthAndGrowsAwayFromIt) {
         0.25, 1e-6);
 }
 
+TEST(Losses, BinaryAlphaLossIsZeroForEmptyAndOpaqueVoxelsAndPeaksAtHalf) {
+    auto cube = torch::zeros({1, 4, 8, 8, 8});
+    cube.narrow(1, 3, 1).narrow(2, 0, 4).fill_(1.0);  // half opaque, half empty
+    EXPECT_NEAR(binaryAlphaLoss({cube}).item<double>(), 0.0, 1e-7);
+    auto fog = torch::zeros({1, 4, 8, 8, 8});
+    fog.narrow(1, 3, 1).fill_(0.5);
+    EXPECT_NEAR(binaryAlphaLoss({cube, fog}).item<double>(), 0.125, 1e-6);
+    // Its gradient lowers alpha below one half and raises it above.
+    auto alpha = torch::tensor({0.2f, 0.8f}).view({1, 1, 1, 1, 2});
+    auto voxels = torch::cat({torch::zeros({1, 3, 1, 1, 2}), alpha}, 1).requires_grad_(true);
+    binaryAlphaLoss({voxels}).backward();
+    const auto g = voxels.grad().narrow(1, 3, 1).flatten();
+    EXPECT_GT(g[0].item<double>(), 0.0);  // descent lowers 0.2
+    EXPECT_LT(g[1].item<double>(), 0.0);  // and raises 0.8
+}
+
 TEST(Losses, SparsityLossIsTheMeanAlpha) {
     auto cube = torch::zeros({1, 4, 16, 16, 16});
     cube.narrow(1, 3, 1).narrow(2, 0, 4).fill_(1.0);

@@ -198,6 +198,19 @@ TEST_F(TrainerTest, TrainingUnderPruningSteersTrainingAndTheModelRecordsTheThres
     }
 }
 
+TEST_F(TrainerTest, TheBinaryAlphaPriorSteersTraining) {
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_binary_alpha", 0.0, 50.0,
+                  [](TrainOptions& o, double w) { o.alphaBinaryWeight = w; }, log),
+              1e-6)
+        << "the binary alpha prior changed nothing";
+    EXPECT_NE(log.str().find("cubes also 50 x alpha (1 - alpha)"), std::string::npos) << log.str();
+    TrainOptions negative = options("lighthouse_trainer_binary_alpha_negative");
+    negative.alphaBinaryWeight = -1.0;
+    EXPECT_THROW(negative.validate(), InputError);
+}
+
 TEST_F(TrainerTest, TheEnvmapSquaredErrorWeightSteersTraining) {
     // As the irradiance weight: off and strong give different weights, and the log says the
     // term is on; a negative weight and one above 100 are refused.
