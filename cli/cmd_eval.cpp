@@ -29,7 +29,8 @@ void addEvalCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--hdri-dir", o->hdriDir, "Panoramas of the scenes' windows (for the oracle)")
         ->capture_default_str();
     cmd->add_option("--prune-alpha", o->pruneAlpha,
-                    "As predict's --prune-alpha (default: the model's, as predict's)");
+                    "As predict's --prune-alpha (default: the model's, as predict's)")
+        ->check(CLI::Range(0.0f, 1.0f));
     auto shard = std::make_shared<std::string>();
     cmd->add_option(
         "--shard", *shard,

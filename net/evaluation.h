@@ -33,7 +33,7 @@ struct EvalOptions {
     std::string hdriDir;  // panoramas for the oracle's windows
     std::string device = "cpu";
     int threads = 0;
-    float pruneAlpha = -1;  // predict's --prune-alpha; negative: its default
+    float pruneAlpha = -1;  // predict's --prune-alpha; negative: the model's (as predict's)
     // With shard.active: only scene i with shard.owns(i), into out/metrics.shard-K-of-N.csv,
     // out/sheet.shard-K-of-N/ and out/shard-K-of-N.json; mergeEvalShards (net/eval_table.h)
     // writes table.md, metrics.csv and contact_sheet.png from a complete set.

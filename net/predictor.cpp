@@ -70,7 +70,7 @@ struct Predictor::Impl {
 Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<Impl>()) {
     setTorchThreads(options.threads);
     impl_->device = selectDevice(options.device);
-    if (!(options.pruneAlpha < 1) || std::isnan(options.pruneAlpha))
+    if (!(options.pruneAlpha < 1))  // NaN too
         throw InputError("--prune-alpha must be in [0, 1)");
     if (!options.untrainedConfig.empty()) {
         impl_->net = LighthouseNet(NetConfig::byName(options.untrainedConfig));

@@ -133,3 +133,8 @@ lighthouse_cli_error(predict_negative_prune_alpha
   ABSENT pred_negative_prune.vdb
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --prune-alpha -0.5 -o pred_negative_prune.vdb)
+lighthouse_cli_error(eval_negative_prune_alpha
+  EXPECT "--prune-alpha"
+  ABSENT eval_negative_prune
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS eval --data ${LH_PAIR} --prune-alpha -0.5 -o eval_negative_prune)
