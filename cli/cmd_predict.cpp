@@ -40,7 +40,7 @@ struct PredictOptions {
     bool alsoPng = false;
     float exposure = 1.f;
     bool half = false;
-    float pruneAlpha = -1;  // the model's (net/predictor.h)
+    float pruneAlpha = -1;               // the model's (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
 };
 
@@ -228,8 +228,7 @@ void runPredict(const PredictOptions& o, int threads) {
     warnOfHalfClamping(saveVdb(o.output, &p.volume, &p.mpi, VolumeSaveOptions{o.half}), "--half");
     std::cerr << "predict: network " << p.seconds << " s; " << p.volume.activeVoxelCount()
               << " active voxels (alpha >= " << predictor.pruneAlpha() << "), MPI of "
-              << p.mpi.planeCount() << " planes -> " << o.output
-              << "\n";
+              << p.mpi.planeCount() << " planes -> " << o.output << "\n";
     if (!points.empty()) {
         const RenderVolume prepared(p.volume);
         for (size_t i = 0; i < points.size(); ++i) {

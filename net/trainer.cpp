@@ -283,12 +283,12 @@ std::pair<double, double> validate(LighthouseNet& net, const std::vector<Trainin
             makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
                            *ex.cameras.far, net->config, device);
         const PipelineOutput out = net->run(in, true);
+        const auto cubes = pruneCubesStraightThrough(out.cubes, net->config.pruneAlpha);
         for (size_t e = 0; e < ex.envmaps.size(); ++e) {
             const auto& gt = ex.envmaps[e];
-            const ImageRGB pred = tensorToImage(
-                renderEnvmapTorch(pruneCubesStraightThrough(out.cubes, net->config.pruneAlpha),
-                                  in.layout, ex.cameras.envmaps[e].position, gt.width,
-                                  gt.height, net->config.samplesPerLevel));
+            const ImageRGB pred =
+                tensorToImage(renderEnvmapTorch(cubes, in.layout, ex.cameras.envmaps[e].position,
+                                                gt.width, gt.height, net->config.samplesPerLevel));
             const EnvmapMetrics m = compareEnvmaps(pred, gt);
             psnrs.push_back(m.psnrAll);
             angles.push_back(m.angularAll);
@@ -346,8 +346,7 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
     p.target = ex.cameras.tgt->resized(config.width, config.height);
     p.targetImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
     if (unclipped)
-        p.targetHdr =
-            imageToTensor(resizeImage(targetHdr, config.width, config.height)).to(device);
+        p.targetHdr = imageToTensor(resizeImage(targetHdr, config.width, config.height)).to(device);
     for (size_t e = 0; e < ex.envmaps.size(); ++e) {
         p.envmaps.push_back(
             imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight))
@@ -587,11 +586,11 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                 // for one or all, and each one is a room seen from another point. The adversarial
                 // stage uses the one drawn for this iteration.
                 torch::Tensor env;
-                const auto renderedCubes = pruneCubesStraightThrough(out.cubes, o.pruneAlpha);
+                const auto renderedCubes = pruneCubesStraightThrough(out.cubes, config.pruneAlpha);
                 for (size_t k = 0; k < ex.envmaps.size(); ++k) {
                     const auto rendered = renderEnvmapTorch(
-                        renderedCubes, ex.inputs.layout, ex.envmapPositions[k], config.trainEnvWidth,
-                        config.trainEnvHeight, config.samplesPerLevel);
+                        renderedCubes, ex.inputs.layout, ex.envmapPositions[k],
+                        config.trainEnvWidth, config.trainEnvHeight, config.samplesPerLevel);
                     envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) +
                               hdrImageLoss(rendered, ex.envmaps[k]) +
                               o.irradianceWeight * irradianceLoss(rendered, ex.envmaps[k]);
