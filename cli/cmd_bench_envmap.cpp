@@ -3,7 +3,10 @@
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "core/atomic_file.h"
 #include "core/errors.h"
+#include "render/render_volume.h"
+#include "study/ray_budget.h"
 #include "study/speed_error.h"
 
 #include <fstream>
@@ -32,7 +35,14 @@ void runBench(BenchOptions& o) {
     writeSpeedErrorReport(rows, o.out, o.bench.width, o.bench.height);
     std::ifstream table(o.out + "/speed_error.md");
     std::cout << table.rdbuf();
-    std::cerr << "report (csv, md, svg plot) written to " << o.out << "/\n";
+    // Why the fastest setting is as fast as it is: how far rays travel through medium.
+    RayBudgetOptions budget;
+    budget.points = o.bench.points, budget.seed = o.bench.seed;
+    const std::string budgetTable =
+        rayBudgetMarkdown(measureRayBudget(RenderVolume(volume), budget), budget);
+    writeTextFile(o.out + "/ray_budget.md", budgetTable);
+    std::cout << budgetTable;
+    std::cerr << "report (csv, md, svg plot, ray_budget.md) written to " << o.out << "/\n";
 }
 
 }  // namespace
