@@ -93,6 +93,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "alpha)); with --prune-alpha it asks for empty rooms and opaque walls, which "
                     "render fastest; 0: off")
         ->capture_default_str();
+    cmd->add_option("--closure-weight", o->closureWeight,
+                    "Weight of the closed-room prior (the mean transmittance an envmap ray has "
+                    "left behind the volume): asks for walls that stop every ray, as the "
+                    "training rooms' do, instead of fog that lets rays out; 0: off")
+        ->capture_default_str();
     cmd->add_option("--validate-every", o->validateEvery, "Iterations between validations")
         ->capture_default_str();
     cmd->add_option("--validation-scenes", o->validationScenes,

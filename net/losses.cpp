@@ -157,6 +157,8 @@ torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted,
     return total / double(predicted.size());
 }
 
+torch::Tensor closureLoss(const torch::Tensor& transmittance) { return transmittance.mean(); }
+
 torch::Tensor mpiExpectedDisparity(const torch::Tensor& mpi, const std::vector<double>& depths) {
     const auto alpha = mpi.narrow(1, 3, 1).clamp(0.0, 1.0 - 1e-6);  // [1, 1, D, H, W]
     const auto logClear = torch::log1p(-alpha);

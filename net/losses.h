@@ -62,6 +62,14 @@ torch::Tensor sparsityLoss(const std::vector<torch::Tensor>& cubes);
 // termination cannot use; this asks each voxel to decide.
 torch::Tensor binaryAlphaLoss(const std::vector<torch::Tensor>& cubes);
 
+// A prior for closed rooms: the mean over an envmap's rays of the transmittance left behind
+// the volume ([1, 1, H, W], TorchEnvmap::transmittance); 0 where every ray ends on something
+// opaque, 1 for an empty volume. The training rooms are closed, so every ray from inside
+// ends on a wall. A fog lets rays leave the volume instead: they miss the light they should
+// have gathered, and the envmap renderer marches them through every level (`bench-envmap`'s
+// ray budget measures it: rays that never stop cost the most).
+torch::Tensor closureLoss(const torch::Tensor& transmittance);
+
 // A 4x4 convolution whose weight is divided by its largest singular value, estimated by one
 // power iteration per training forward pass (Miyato et al. 2018).
 struct SpectralConv2dImpl : torch::nn::Module {

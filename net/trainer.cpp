@@ -59,6 +59,8 @@ void TrainOptions::validate() const {
     if (!(pruneAlpha >= 0 && pruneAlpha < 1)) throw InputError("--prune-alpha must be in [0, 1)");
     if (!(alphaBinaryWeight >= 0 && alphaBinaryWeight <= 1000))
         throw InputError("--alpha-binary-weight must be in [0, 1000]");
+    if (!(closureWeight >= 0 && closureWeight <= 100))
+        throw InputError("--closure-weight must be in [0, 100]");
     if (batch % distributed.worldSize != 0)
         throw InputError(
             "--batch " + std::to_string(batch) + " must be a multiple of the world size " +
@@ -531,6 +533,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                  << " pruned (straight-through)";
     if (o.alphaBinaryWeight > 0)
         progress << "; cubes also " << o.alphaBinaryWeight << " x alpha (1 - alpha)";
+    if (o.closureWeight > 0)
+        progress << "; envmaps also " << o.closureWeight
+                 << " x the transmittance left behind the volume (closed rooms)";
     progress << "\n";
     const auto lossOf = [&](const torch::Tensor& predicted, const torch::Tensor& target) {
         return vgg ? (*vgg)(predicted, target) : imageLoss(predicted, target);
@@ -588,9 +593,12 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                 torch::Tensor env;
                 const auto renderedCubes = pruneCubesStraightThrough(out.cubes, config.pruneAlpha);
                 for (size_t k = 0; k < ex.envmaps.size(); ++k) {
-                    const auto rendered = renderEnvmapTorch(
+                    const TorchEnvmap envmap = renderEnvmapAndTransmittanceTorch(
                         renderedCubes, ex.inputs.layout, ex.envmapPositions[k],
                         config.trainEnvWidth, config.trainEnvHeight, config.samplesPerLevel);
+                    const torch::Tensor& rendered = envmap.radiance;
+                    if (o.closureWeight > 0)
+                        envLoss = envLoss + o.closureWeight * closureLoss(envmap.transmittance);
                     envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) +
                               hdrImageLoss(rendered, ex.envmaps[k]) +
                               o.irradianceWeight * irradianceLoss(rendered, ex.envmaps[k]);

@@ -91,6 +91,10 @@ struct TrainOptions {
     // cubes; with pruneAlpha, what asks for the empty rooms and opaque walls the renderer
     // skips and stops at. 0: off.
     double alphaBinaryWeight = 0.0;
+    // Weight of the closed-room prior (net/losses.h closureLoss): the transmittance each
+    // envmap ray has left behind the (pruned) volume. The training rooms are closed; fog lets
+    // rays leave through the walls, dark and slow to render. 0: off.
+    double closureWeight = 0.0;
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

@@ -41,6 +41,13 @@ torch::Tensor insideBox(const torch::Tensor& points, const WorldBox& box) {
 
 torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const VolumeLayout& layout,
                                 const Vec3d& position, int width, int height, int samples) {
+    return renderEnvmapAndTransmittanceTorch(cubes, layout, position, width, height, samples)
+        .radiance;
+}
+
+TorchEnvmap renderEnvmapAndTransmittanceTorch(const std::vector<torch::Tensor>& cubes,
+                                              const VolumeLayout& layout, const Vec3d& position,
+                                              int width, int height, int samples) {
     const auto device = cubes.front().device();
     const int levels = int(cubes.size());
     const auto dirs = envmapDirections(width, height).view({-1, 1, 3});  // [P, 1, 3]
@@ -100,14 +107,16 @@ torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const V
     const auto sigma = torch::cat(sigmas, 2).index_select(2, index);        // [1, P, N]
     const auto emission = torch::cat(emissions, 2).index_select(2, index);  // [3, P, N]
     const auto tau = sigma * dt;
-    const auto transmittanceBefore = torch::exp(-(torch::cumsum(tau, 2) - tau));
+    const auto opticalDepth = torch::cumsum(tau, 2);  // to the far side of each shell
+    const auto transmittanceBefore = torch::exp(-(opticalDepth - tau));
     // (1 - exp(-tau)) / sigma = dt (1 - exp(-tau)) / tau, stable as tau -> 0.
     const auto smallTau = tau < 1e-4;
     const auto safeTau = torch::where(smallTau, torch::ones_like(tau), tau);
     const auto integral =
         torch::where(smallTau, dt * (1.0 - 0.5 * tau), dt * (-torch::expm1(-safeTau)) / safeTau);
-    const auto radiance = (transmittanceBefore * integral * emission).sum(2);  // [3, P]
-    return radiance.view({1, 3, height, width});
+    const auto radiance = (transmittanceBefore * integral * emission).sum(2);         // [3, P]
+    const auto left = torch::exp(-opticalDepth.select(2, opticalDepth.size(2) - 1));  // [1, P]
+    return {radiance.view({1, 3, height, width}), left.view({1, 1, height, width})};
 }
 
 std::vector<torch::Tensor> pruneCubesStraightThrough(const std::vector<torch::Tensor>& cubes,

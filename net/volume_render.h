@@ -22,8 +22,18 @@ namespace lh::net {
 // Unit directions of every envmap pixel (docs/conventions.md#envmap-layout), [H, W, 3], float64.
 torch::Tensor envmapDirections(int width, int height);
 
+// An envmap and what is left of each of its rays behind the volume.
+struct TorchEnvmap {
+    torch::Tensor radiance;       // [1, 3, height, width], linear RGB
+    torch::Tensor transmittance;  // [1, 1, height, width], exp(-optical depth of the whole ray)
+};
+
 // cubes: per level (coarsest first) [1, 4, R, R, R] linear RGB + voxel alpha.
-// Returns the envmap at `position` (world frame), [1, 3, height, width].
+// Renders the envmap at `position` (world frame).
+TorchEnvmap renderEnvmapAndTransmittanceTorch(const std::vector<torch::Tensor>& cubes,
+                                              const VolumeLayout& layout, const Vec3d& position,
+                                              int width, int height, int samplesPerLevel);
+// Its radiance alone, [1, 3, height, width].
 torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const VolumeLayout& layout,
                                 const Vec3d& position, int width, int height, int samplesPerLevel);
 

@@ -3,6 +3,7 @@
 #include "image/envmap_layout.h"
 #include "image/image_io.h"
 #include "net/lighthouse_net.h"
+#include "net/losses.h"
 #include "net/mpi_render.h"
 #include "net/mpi_resample.h"
 #include "net/psv.h"
@@ -195,6 +196,40 @@ TEST(TrainingRenderer, HomogeneousMediumMatchesTheAnalyticAnswer) {
         }
 }
 
+TEST(TrainingRenderer, TransmittanceLeftBehindTheVolumeIsThatOfItsWholeOpticalDepth) {
+    // The homogeneous level above (alpha 0.05 per voxel) seen from its centre: each ray leaves
+    // through a face with exp(-sigma * distance to the face) left, the closed-room prior is
+    // its mean, and an opaque medium (alpha 0.9) leaves almost nothing.
+    const VolumeLayout layout = VolumeLayout::fromFarDepth(1.0, 1, 16);  // cube of side 2
+    auto cube = torch::zeros({1, 4, 16, 16, 16});
+    cube.narrow(1, 0, 3).fill_(0.7);
+    cube.narrow(1, 3, 1).fill_(0.05);
+    const double sigma = -std::log(0.95) / layout.voxelSize(0);
+    const TorchEnvmap env =
+        renderEnvmapAndTransmittanceTorch({cube}, layout, Vec3d(0.0), 16, 8, 512);
+    ASSERT_EQ(env.transmittance.sizes(), (std::vector<int64_t>{1, 1, 8, 16}));
+    EXPECT_TRUE(
+        torch::allclose(env.radiance, renderEnvmapTorch({cube}, layout, Vec3d(0.0), 16, 8, 512)));
+    double meanLeft = 0;
+    for (int row = 0; row < 8; ++row)
+        for (int col = 0; col < 16; ++col) {
+            const Vec3d d = envmapPixelDirection(row, col, 16, 8);
+            const double toFace =
+                1.0 / std::max({std::abs(d.x()), std::abs(d.y()), std::abs(d.z())});
+            const double left = env.transmittance[0][0][row][col].item<double>();
+            // The outermost half voxel fades to empty: the optical depth is within 4%.
+            EXPECT_NEAR(-std::log(left), sigma * toFace, 0.04 * sigma * toFace)
+                << row << "," << col;
+            meanLeft += left / (8 * 16);
+        }
+    EXPECT_NEAR(closureLoss(env.transmittance).item<double>(), meanLeft, 1e-5);
+    cube.narrow(1, 3, 1).fill_(0.9);
+    const TorchEnvmap opaque =
+        renderEnvmapAndTransmittanceTorch({cube}, layout, Vec3d(0.0), 16, 8, 512);
+    EXPECT_LT(closureLoss(opaque.transmittance).item<double>(), 1e-6);
+    EXPECT_NEAR(closureLoss(torch::ones({1, 1, 8, 16})).item<double>(), 1.0, 1e-7);
+}
+
 TEST(TrainingRenderer, PruningInTrainingRendersWhatPredictExportsWithStraightThroughGradients) {
     // The test volume in a faint fog (alpha 0.05) pruned at 0.1: the forward pass holds the
     // alphas predict would export, so the training render agrees with the ray marcher over
@@ -215,8 +250,8 @@ TEST(TrainingRenderer, PruningInTrainingRendersWhatPredictExportsWithStraightThr
         const auto alpha = cubes[k].narrow(1, 3, 1).detach();
         const auto expected = torch::where(alpha >= threshold, alpha, torch::zeros_like(alpha));
         EXPECT_TRUE(torch::equal(pruned[k].narrow(1, 3, 1).detach(), expected)) << "level " << k;
-        EXPECT_TRUE(torch::equal(pruned[k].narrow(1, 0, 3).detach(),
-                                 cubes[k].narrow(1, 0, 3).detach()));
+        EXPECT_TRUE(
+            torch::equal(pruned[k].narrow(1, 0, 3).detach(), cubes[k].narrow(1, 0, 3).detach()));
     }
 
     const Vec3d p(0.0, 0.0, 0.3);

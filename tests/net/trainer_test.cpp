@@ -211,6 +211,22 @@ TEST_F(TrainerTest, TheBinaryAlphaPriorSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, TheClosedRoomPriorSteersTraining) {
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_closure", 0.0, 20.0,
+                  [](TrainOptions& o, double w) { o.closureWeight = w; }, log),
+              1e-6)
+        << "the closed-room prior changed nothing";
+    EXPECT_NE(log.str().find("20 x the transmittance left behind the volume"), std::string::npos)
+        << log.str();
+    TrainOptions bad = options("lighthouse_trainer_closure_bad");
+    bad.closureWeight = -1.0;
+    EXPECT_THROW(bad.validate(), InputError);
+    bad.closureWeight = 101.0;
+    EXPECT_THROW(bad.validate(), InputError);
+}
+
 TEST_F(TrainerTest, TheEnvmapSquaredErrorWeightSteersTraining) {
     // As the irradiance weight: off and strong give different weights, and the log says the
     // term is on; a negative weight and one above 100 are refused.
