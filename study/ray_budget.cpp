@@ -45,6 +45,7 @@ struct LevelTally {
 struct Tally {
     std::vector<LevelTally> levels;
     double stopped = 0;
+    std::array<double, 4> leaving{};  // rays leaving, by the kLeftEdges class of what is left
 };
 
 int alphaClass(double alpha) {
@@ -84,7 +85,13 @@ void traceRay(const RenderVolume& volume, const std::vector<double>& voxelSizes,
             T *= E;
         }
     }
-    if (T < o.minTransmittance) tally.stopped += 1.0;
+    if (T < o.minTransmittance) {
+        tally.stopped += 1.0;
+        return;
+    }
+    int leftClass = 0;
+    while (leftClass < 3 && T >= kLeftEdges[std::size_t(leftClass) + 1]) ++leftClass;
+    tally.leaving[std::size_t(leftClass)] += 1.0;
 }
 
 }  // namespace
@@ -111,6 +118,7 @@ RayBudget measureRayBudget(const RenderVolume& volume, const std::vector<Vec3d>&
     Tally all{std::vector<LevelTally>(levelCount), 0};
     for (const Tally& t : perPoint) {
         all.stopped += t.stopped;
+        for (std::size_t c = 0; c < all.leaving.size(); ++c) all.leaving[c] += t.leaving[c];
         for (std::size_t k = 0; k < levelCount; ++k) {
             all.levels[k].reaching += t.levels[k].reaching;
             all.levels[k].light += t.levels[k].light;
@@ -125,6 +133,8 @@ RayBudget measureRayBudget(const RenderVolume& volume, const std::vector<Vec3d>&
     double light = 0;
     for (const LevelTally& l : all.levels) light += l.light;
     budget.raysStopped = all.stopped / rays;
+    for (std::size_t c = 0; c < all.leaving.size(); ++c)
+        budget.raysLeaving[c] = all.leaving[c] / rays;
     for (std::size_t k = 0; k < levelCount; ++k) {
         RayBudgetLevel level;
         level.voxelSize = voxelSizes[k];
@@ -162,6 +172,15 @@ std::string rayBudgetMarkdown(const RayBudget& b, const RayBudgetOptions& o) {
                   "\n%.1f voxels of medium per ray in all; %.0f%% of the rays stop (the rest leave "
                   "the volume still transparent enough to count).\n",
                   b.mediumVoxelsPerRay(), 100 * b.raysStopped);
+    md << line;
+    // The rays that leave, by how much they keep: a prior that nearly closes the room leaves
+    // most of them in the first class.
+    std::snprintf(line, sizeof line,
+                  "Rays that leave, by the transmittance they keep: %.0f%% below %g, %.0f%% "
+                  "%g-%g, %.0f%% %g-%g, %.0f%% above %g.\n",
+                  100 * b.raysLeaving[0], kLeftEdges[1], 100 * b.raysLeaving[1], kLeftEdges[1],
+                  kLeftEdges[2], 100 * b.raysLeaving[2], kLeftEdges[2], kLeftEdges[3],
+                  100 * b.raysLeaving[3], kLeftEdges[3]);
     md << line;
     return md.str();
 }

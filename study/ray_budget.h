@@ -32,6 +32,10 @@ struct RayBudgetOptions {
 constexpr int kAlphaClasses = 5;
 constexpr std::array<double, kAlphaClasses + 1> kAlphaClassEdges = {0.0, 0.03, 0.15, 0.5, 0.9, 1.0};
 
+// Transmittance classes of the rays that leave the volume before they stop: the first class
+// holds everything from the threshold (RayBudgetOptions::minTransmittance) up to 0.05.
+constexpr std::array<double, 5> kLeftEdges = {0.01, 0.05, 0.1, 0.3, 1.0};
+
 struct RayBudgetLevel {
     double voxelSize = 0;  // scene units (cube root of the voxel volume)
     // Fraction of rays that cross some of this level's domain while still counting (their
@@ -49,6 +53,9 @@ struct RayBudget {
     int points = 0;                      // query points
     int rays = 0;                        // rays traced: points x width x height
     double raysStopped = 0;  // fraction of rays whose transmittance fell below the threshold
+    // Fraction of all rays that leave the volume with a transmittance in [edge k, edge k + 1)
+    // of kLeftEdges: how nearly closed the rest are.
+    std::array<double, 4> raysLeaving{};
     double mediumVoxelsPerRay() const;  // over all levels and classes
 };
 

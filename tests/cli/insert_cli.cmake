@@ -62,6 +62,7 @@ endforeach()
 lighthouse_cli_ok(bench_envmap_report
   STDOUT "paper-spheres" "openvdb-fixed-step" "ours" "Against the targets" "times faster"
          "not judged: this run rendered 16x8 envmaps" "Where the rays go" "voxels of medium per ray"
+         "Rays that leave, by the transmittance they keep"
   FILES bench_out/speed_error.csv bench_out/speed_error.md bench_out/speed_error.svg
         bench_out/ray_budget.md
   ARGS bench-envmap example.vdb --count 1 --size 16x8 -o bench_out)

@@ -41,6 +41,12 @@ TEST(RayBudget, ThinShellIsCrossedWholeAndCountedAsFog) {
     EXPECT_NEAR(b.mediumVoxelsPerRay(), expectedVoxels, 0.05 * expectedVoxels);
     EXPECT_GT(b.levels[0].mediumVoxels[1], 0.9 * b.mediumVoxelsPerRay());  // alpha 0.03-0.15
     EXPECT_DOUBLE_EQ(b.raysStopped, 0.0);
+    // They leave with exp(-1.5 x 1 to 1.73) = 0.07-0.22 of their transmittance.
+    EXPECT_DOUBLE_EQ(b.raysLeaving[0], 0.0);
+    EXPECT_DOUBLE_EQ(b.raysLeaving[1] + b.raysLeaving[2], 1.0);
+    EXPECT_GT(b.raysLeaving[1], 0.0);  // the corners' longest paths: below 0.1
+    EXPECT_GT(b.raysLeaving[2], 0.0);  // the faces' shortest: above 0.1
+    EXPECT_DOUBLE_EQ(b.raysLeaving[3], 0.0);
     EXPECT_DOUBLE_EQ(b.levels[0].lightShare, 1.0);
 }
 
@@ -54,6 +60,7 @@ TEST(RayBudget, OpaqueShellStopsEveryRayWithinItsOpticalDepth) {
         })}));
     const RayBudget b = measureRayBudget(volume, {Vec3d(0.0)}, smallEnvmaps());
     EXPECT_DOUBLE_EQ(b.raysStopped, 1.0);
+    for (double leaving : b.raysLeaving) EXPECT_DOUBLE_EQ(leaving, 0.0);
     // The face's one-voxel ramp of density adds up to about half a voxel.
     EXPECT_GT(b.mediumVoxelsPerRay(), 2.3);
     EXPECT_LT(b.mediumVoxelsPerRay(), 3.3);
