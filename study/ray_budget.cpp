@@ -45,7 +45,7 @@ struct LevelTally {
 struct Tally {
     std::vector<LevelTally> levels;
     double stopped = 0;
-    std::array<double, 4> leaving{};  // rays leaving, by the kLeftEdges class of what is left
+    std::array<double, kLeftClasses> leaving{};  // rays leaving, by the class of what is left
 };
 
 int alphaClass(double alpha) {
@@ -60,7 +60,7 @@ void traceRay(const RenderVolume& volume, const std::vector<double>& voxelSizes,
               const Vec3d& origin, const Vec3d& dir, const RayBudgetOptions& o, Tally& tally) {
     Piece pieces[RenderVolume::kMaxPieces];
     const int count = volume.partitionRay(origin, dir, pieces);
-    std::vector<bool> reached(volume.levels.size(), false);
+    std::array<bool, RenderVolume::kMaxLevels> reached{};  // no allocation per ray
     double T = 1.0;
     for (int p = 0; p < count && T >= o.minTransmittance; ++p) {
         const int k = pieces[p].level;
@@ -90,7 +90,7 @@ void traceRay(const RenderVolume& volume, const std::vector<double>& voxelSizes,
         return;
     }
     int leftClass = 0;
-    while (leftClass < 3 && T >= kLeftEdges[std::size_t(leftClass) + 1]) ++leftClass;
+    while (leftClass < kLeftClasses - 1 && T >= kLeftEdges[std::size_t(leftClass) + 1]) ++leftClass;
     tally.leaving[std::size_t(leftClass)] += 1.0;
 }
 

@@ -35,6 +35,7 @@ constexpr std::array<double, kAlphaClasses + 1> kAlphaClassEdges = {0.0, 0.03, 0
 // Transmittance classes of the rays that leave the volume before they stop: the first class
 // holds everything from the threshold (RayBudgetOptions::minTransmittance) up to 0.05.
 constexpr std::array<double, 5> kLeftEdges = {0.01, 0.05, 0.1, 0.3, 1.0};
+constexpr int kLeftClasses = int(kLeftEdges.size()) - 1;
 
 struct RayBudgetLevel {
     double voxelSize = 0;  // scene units (cube root of the voxel volume)
@@ -55,7 +56,7 @@ struct RayBudget {
     double raysStopped = 0;  // fraction of rays whose transmittance fell below the threshold
     // Fraction of all rays that leave the volume with a transmittance in [edge k, edge k + 1)
     // of kLeftEdges: how nearly closed the rest are.
-    std::array<double, 4> raysLeaving{};
+    std::array<double, kLeftClasses> raysLeaving{};
     double mediumVoxelsPerRay() const;  // over all levels and classes
 };
 
