@@ -1,5 +1,6 @@
-// `lighthouse bench-envmap FILE.vdb [--count 8] [--repeats 3] [-o DIR]`: speed against error of our
-// marcher, a fixed-step OpenVDB-sampler marcher and the paper's concentric spheres.
+// `lighthouse bench-envmap FILE.vdb [--count 8] [--repeats 3] [--reference-step 0.05] [-o DIR]`:
+// speed against error of our marcher, a fixed-step OpenVDB-sampler marcher and the paper's
+// concentric spheres.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "cli/common_options.h"
@@ -29,6 +30,7 @@ void runBench(BenchOptions& o) {
         throw InputError("--count must be in [1, 1000]");
     if (o.bench.repeats < 1 || o.bench.repeats > 100)
         throw InputError("--repeats must be in [1, 100]");
+    o.bench.validate();
     const LightingVolume volume = loadVolumeForCli(o.file, o.strict);
     const auto rows = measureSpeedAgainstError(
         volume, o.bench, [](const std::string& s) { std::cerr << "bench: " << s << "\n"; });
@@ -68,6 +70,13 @@ void addBenchEnvmapCommand(CLI::App& app) {
                     "Timing rounds: each renders every setting at every point once; an envmap's "
                     "time is its fastest "
                     "round (a busy machine only adds time)")
+        ->capture_default_str();
+    cmd->add_option("--reference-step", o->bench.referenceStep,
+                    "Step of the reference every row is measured against, in voxels (0.005-0.05; "
+                    "thick steps sub-divided to an optical depth of 0.4 x it). The "
+                    "reference-check row, at half of it, shows how converged it is: where that "
+                    "row's error is near the others', halve the step (each halving doubles the "
+                    "references' time)")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->out, "Directory for speed_error.csv/.md/.svg")
         ->capture_default_str();

@@ -1,6 +1,7 @@
 #include "study/speed_error.h"
 
 #include "core/atomic_file.h"
+#include "core/errors.h"
 #include "image/plot.h"
 #include "render/free_space.h"
 #include "sparsify/envmap_error.h"
@@ -24,19 +25,48 @@ std::string cellQuadratureLabel(int nodes, double bound, double threshold) {
     return s.str();
 }
 
+void SpeedErrorOptions::validate() const {
+    if (!(referenceStep >= 0.005 && referenceStep <= 0.05)) {
+        std::ostringstream s;
+        s << "the reference step must be in [0.005, 0.05] voxels (default 0.05), got "
+          << referenceStep;
+        throw InputError(s.str());
+    }
+}
+
+MarchOptions referenceMarchAt(double step) {
+    MarchOptions march = MarchOptions::reference();
+    const double scale = step / march.stepVoxels;  // the optical depth per step follows the step
+    march.stepVoxels = step;
+    march.maxStepOpticalDepth *= scale;
+    return march;
+}
+
+namespace {
+
+// "step 0.025, tau<0.01": a fixed-step setting without skipping (the reference's kind).
+std::string referenceLabel(const MarchOptions& march) {
+    std::ostringstream s;
+    s << "step " << march.stepVoxels << ", tau<" << march.maxStepOpticalDepth;
+    return s.str();
+}
+
+}  // namespace
+
 std::vector<SpeedErrorRow> measureSpeedAgainstError(
     const LightingVolume& volume, const SpeedErrorOptions& o,
     const std::function<void(const std::string&)>& progress) {
+    o.validate();
     const RenderVolume prepared(volume);
     const std::vector<Vec3d> points = freeSpacePoints(prepared, o.points, o.seed);
     const auto say = [&](const std::string& s) {
         if (progress) progress(s);
     };
-    say("reference envmaps (0.05-voxel steps, no skipping)");
+    const MarchOptions referenceMarch = referenceMarchAt(o.referenceStep);
+    say("reference envmaps (" + referenceLabel(referenceMarch) + ", no skipping)");
     std::vector<ImageRGB> reference;
     for (const Vec3d& p : points)
-        reference.push_back(
-            renderEnvmap(prepared, p, {o.width, o.height, MarchOptions::reference()}));
+        reference.push_back(renderEnvmap(prepared, p, {o.width, o.height, referenceMarch}));
 
     // Every setting to measure, first collected, then timed in rounds.
     struct Trial {
@@ -51,9 +81,9 @@ std::vector<SpeedErrorRow> measureSpeedAgainstError(
             trials.push_back({method, setting, std::move(render)});
     };
     // How converged the reference is: the same at half the step and optical depth per step.
-    measure("reference-check", "step 0.025, tau<0.01", [&](const Vec3d& p) {
-        return renderEnvmap(prepared, p,
-                            {o.width, o.height, MarchOptions{0.025, 0.0, false, 0.01, 0}});
+    const MarchOptions checkMarch = referenceMarchAt(o.referenceStep / 2);
+    measure("reference-check", referenceLabel(checkMarch), [&](const Vec3d& p) {
+        return renderEnvmap(prepared, p, {o.width, o.height, checkMarch});
     });
     for (double tauMax : {0.5, 0.1})
         for (double threshold : {1e-4, 1e-2})

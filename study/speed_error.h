@@ -27,7 +27,20 @@ struct SpeedErrorOptions {
     // Methods to measure ("reference-check", "ours-steps", "ours-cells", "openvdb-fixed-step",
     // "paper-spheres"); empty: all of them.
     std::vector<std::string> methods;
+    // Step of the reference every row is measured against, in voxels of the level marched
+    // (MarchOptions::reference() at the default 0.05); thick steps are sub-divided to an
+    // optical depth of 0.4 x the step (0.02 at 0.05). The reference-check row renders at half
+    // of both. Where bright, thin surfaces make the reference-check row's difference
+    // comparable to the errors being measured, a finer reference tells them apart: each
+    // halving costs about twice the time of the references (renders once, not per round).
+    double referenceStep = 0.05;
+    // Throws InputError for a reference step outside [0.005, 0.05] (coarser than the
+    // default reference, or so fine that one envmap takes minutes).
+    void validate() const;
 };
+
+// The reference's march options at `step` voxels (see SpeedErrorOptions::referenceStep).
+MarchOptions referenceMarchAt(double step);
 
 struct SpeedErrorRow {
     std::string method;   // "ours-cells", "ours-steps", "openvdb-fixed-step", "paper-spheres"

@@ -70,6 +70,10 @@ lighthouse_cli_error(bench_envmap_zero_repeats
   EXPECT "--repeats must be in [[]1, 100[]]"
   ARGS bench-envmap example.vdb --count 1 --size 16x8 --repeats 0 -o bench_out_bad)
 set_tests_properties(cli.error.bench_envmap_zero_repeats PROPERTIES FIXTURES_REQUIRED lighthouse_cli)
+lighthouse_cli_error(bench_envmap_coarse_reference
+  EXPECT "the reference step must be in [[]0.005, 0.05[]] voxels"
+  ARGS bench-envmap example.vdb --count 1 --size 16x8 --reference-step 0.1 -o bench_out_bad2)
+set_tests_properties(cli.error.bench_envmap_coarse_reference PROPERTIES FIXTURES_REQUIRED lighthouse_cli)
 
 # `lighthouse edit`: an emissive box added at +x shows up in a re-rendered envmap file.
 lighthouse_cli_ok(edit_add_box_and_scale

@@ -1,4 +1,5 @@
 #include "study/speed_error.h"
+#include "core/errors.h"
 #include "vdb/example_volume.h"
 
 #include <gtest/gtest.h>
@@ -42,6 +43,41 @@ TEST(SpeedError, RoundsKeepEachRowsOwnErrorAndTime) {
     // Both rounds ran and said so.
     EXPECT_TRUE(said.count("round 1/2: ours-cells, 2 Gauss nodes/cell, bound 1, T<0.0001"));
     EXPECT_TRUE(said.count("round 2/2: paper-spheres, 256 spheres/level"));
+}
+
+// A finer reference is closer to its own half-step check: the reference-check row's error
+// shrinks as the reference step is halved (the fixed-step march converges), and the rows say
+// which step they were measured at.
+TEST(SpeedError, AFinerReferenceAgreesBetterWithItsCheck) {
+    const LightingVolume volume = makeExampleVolume(2, 16);
+    SpeedErrorOptions o;
+    o.points = 2, o.width = 16, o.height = 8, o.repeats = 1;
+    o.methods = {"reference-check"};
+    const std::vector<SpeedErrorRow> standard = measureSpeedAgainstError(volume, o);
+    o.referenceStep = 0.025;
+    const std::vector<SpeedErrorRow> finer = measureSpeedAgainstError(volume, o);
+    ASSERT_EQ(standard.size(), 1u);
+    ASSERT_EQ(finer.size(), 1u);
+    EXPECT_EQ(standard[0].setting, "step 0.025, tau<0.01");
+    EXPECT_EQ(finer[0].setting, "step 0.0125, tau<0.005");
+    EXPECT_GT(standard[0].relativeRmse, 0.0);
+    EXPECT_LT(finer[0].relativeRmse, 0.75 * standard[0].relativeRmse);
+}
+
+TEST(SpeedError, TheReferenceStepFollowsTheDefaultAndRefusesAbsurdSteps) {
+    const MarchOptions atDefault = referenceMarchAt(0.05), reference = MarchOptions::reference();
+    EXPECT_EQ(atDefault.stepVoxels, reference.stepVoxels);
+    EXPECT_DOUBLE_EQ(atDefault.maxStepOpticalDepth, reference.maxStepOpticalDepth);
+    EXPECT_EQ(atDefault.skipEmptySpace, reference.skipEmptySpace);
+    EXPECT_EQ(atDefault.minTransmittance, reference.minTransmittance);
+    EXPECT_EQ(atDefault.cellNodes, 0);
+    EXPECT_DOUBLE_EQ(referenceMarchAt(0.01).maxStepOpticalDepth, 0.004);
+    SpeedErrorOptions o;
+    EXPECT_NO_THROW(o.validate());
+    for (double bad : {0.0, 0.004, 0.06, -1.0, std::nan("")}) {
+        o.referenceStep = bad;
+        EXPECT_THROW(o.validate(), InputError) << bad;
+    }
 }
 
 }  // namespace
