@@ -28,5 +28,6 @@ void addMergeCommand(CLI::App& app);
 void addTrainCommand(CLI::App& app, const int& threads);
 void addPredictCommand(CLI::App& app, const int& threads);
 void addEvalCommand(CLI::App& app, const int& threads);
+void addAverageModelsCommand(CLI::App& app);
 
 }  // namespace lh::cli

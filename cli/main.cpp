@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
     lh::cli::addPredictCommand(app, threads);
     lh::cli::addTrainCommand(app, threads);
     lh::cli::addEvalCommand(app, threads);
+    lh::cli::addAverageModelsCommand(app);
 #else
     lh::cli::addNetCommandEntries(app);
 #endif

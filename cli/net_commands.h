@@ -20,6 +20,8 @@ inline constexpr NetCommand kNetCommands[] = {
     {"eval",
      "Score the model against baselines and the oracle on a synthetic test split (Markdown table + "
      "contact sheet)"},
+    {"average-models",
+     "Average the weights of models fine-tuned from one model (a model soup): one model file"},
 };
 const char* netCommandDescription(const char* name);
 

@@ -47,8 +47,8 @@ void addNetCommandEntries(CLI::App& app) {
     // CLI11's --help-all expands every command but these: their options are not known here,
     // and a command's footer is not part of the expanded listing. So the main help says it.
     app.footer(
-        "predict, train and eval run in lighthouse-net (libtorch): 'lighthouse predict --help' "
-        "(train, eval) lists their options.");
+        "predict, train, eval and average-models run in lighthouse-net (libtorch): "
+        "'lighthouse predict --help' (train, eval, average-models) lists their options.");
     for (const NetCommand& c : kNetCommands) {
         CLI::App* entry = app.add_subcommand(c.name, c.description);
         entry->allow_extras();

@@ -138,3 +138,23 @@ lighthouse_cli_error(eval_negative_prune_alpha
   ABSENT eval_negative_prune
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS eval --data ${LH_PAIR} --prune-alpha -0.5 -o eval_negative_prune)
+
+# `lighthouse average-models`: the bundled model averaged with itself is written (half), and
+# what would lose a model is refused: one model only, or an output that is one of the inputs.
+if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
+  lighthouse_cli_ok(average_models_bundled
+    FILES averaged_standard.pt
+    ARGS average-models ${PROJECT_SOURCE_DIR}/models/standard.pt
+         ${PROJECT_SOURCE_DIR}/models/standard.pt --half --force -o averaged_standard.pt)
+  lighthouse_cli_error(average_models_over_an_input
+    EXPECT "is one of the models being averaged"
+    MAX_MEMORY_MB ${LH_TORCH_MB}
+    ARGS average-models ${PROJECT_SOURCE_DIR}/models/standard.pt
+         ${PROJECT_SOURCE_DIR}/models/standard.pt -o ${PROJECT_SOURCE_DIR}/models/standard.pt)
+endif()
+lighthouse_cli_error(average_models_one_model
+  EXPECT "models"
+  ABSENT averaged_one.pt
+  PARSE_ERROR
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS average-models only_one.pt -o averaged_one.pt)
