@@ -36,11 +36,11 @@ void addAverageModelsCommand(CLI::App& app) {
     auto o = std::make_shared<AverageOptions>();
     CLI::App* cmd = app.add_subcommand("average-models", netCommandDescription("average-models"));
     cmd->add_option("models", o->models,
-                    "Two or more model files of one configuration, fine-tuned from one model")
+                    "Two or more model files of one configuration, fine-tuned from one model "
+                    "(a file named twice counts twice)")
         ->required()
-        ->expected(2, 64);
-    cmd->add_option("-o,--output", o->out, "Averaged model file (written atomically)")
-        ->required();
+        ->expected(-2);
+    cmd->add_option("-o,--output", o->out, "Averaged model file (written atomically)")->required();
     cmd->add_flag("--half", o->half, "Store the average in half precision (half the size)");
     cmd->add_flag("--force", o->force, "Overwrite an existing output file");
     cmd->callback([o] { runAverage(*o); });
