@@ -1,7 +1,9 @@
 // Averaging the weights of several models (a "model soup", Wortsman et al. 2022): models
 // fine-tuned from one starting model with different losses or seeds lie in one basin of the
-// loss, and their weight average often scores better than each of them, at the cost of one
-// model (unlike an ensemble, which predicts with all of them). Torch-free: the CLI includes it.
+// loss, and their weight average can score better than each of them, at the cost of one model
+// (unlike an ensemble, which predicts with all of them). On the fine-tunes of this project's
+// bundled model it scored within 0.05 dB of its models' mean (models/README.md, "model
+// soups"). Torch-free: the CLI includes it.
 #pragma once
 
 #include <string>
