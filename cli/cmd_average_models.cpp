@@ -2,7 +2,9 @@
 // weights of models fine-tuned from one model (net/model_average.h).
 #include "cli/commands.h"
 #include "cli/net_commands.h"
+#include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/path_guard.h"
 #include "net/model_average.h"
 
 #include <filesystem>
@@ -19,10 +21,10 @@ struct AverageOptions {
 };
 
 void runAverage(const AverageOptions& o) {
-    for (const std::string& m : o.models)
-        if (std::filesystem::weakly_canonical(m) == std::filesystem::weakly_canonical(o.out))
-            throw InputError("the output '" + o.out +
-                             "' is one of the models being averaged: write it elsewhere");
+    std::vector<NamedInput> inputs;
+    for (const std::string& m : o.models) inputs.push_back({m, "a model to average"});
+    requireOutputIsNotAnInput(o.out, "-o", inputs);
+    requireWritableOutput(o.out);  // before the models are read, not after
     if (std::filesystem::exists(o.out) && !o.force)
         throw InputError("'" + o.out + "' exists: remove it, or pass --force to overwrite it");
     std::cerr << "average-models: averaging " << o.models.size() << " models\n";
