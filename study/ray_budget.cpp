@@ -175,13 +175,17 @@ std::string rayBudgetMarkdown(const RayBudget& b, const RayBudgetOptions& o) {
     md << line;
     // The rays that leave, by how much they keep: a prior that nearly closes the room leaves
     // most of them in the first class.
-    std::snprintf(line, sizeof line,
-                  "Rays that leave, by the transmittance they keep: %.0f%% below %g, %.0f%% "
-                  "%g-%g, %.0f%% %g-%g, %.0f%% above %g.\n",
-                  100 * b.raysLeaving[0], kLeftEdges[1], 100 * b.raysLeaving[1], kLeftEdges[1],
-                  kLeftEdges[2], 100 * b.raysLeaving[2], kLeftEdges[2], kLeftEdges[3],
-                  100 * b.raysLeaving[3], kLeftEdges[3]);
-    md << line;
+    md << "Rays that leave, by the transmittance they keep:";
+    for (int c = 0; c < kLeftClasses; ++c) {
+        const double lo = kLeftEdges[std::size_t(c)], hi = kLeftEdges[std::size_t(c) + 1];
+        if (c == 0)  // from the threshold up: named by its upper edge
+            std::snprintf(line, sizeof line, " %.0f%% below %g", 100 * b.raysLeaving[0], hi);
+        else if (c == kLeftClasses - 1)  // up to 1: named by its lower edge
+            std::snprintf(line, sizeof line, " %.0f%% above %g", 100 * b.raysLeaving[c], lo);
+        else
+            std::snprintf(line, sizeof line, " %.0f%% %g-%g", 100 * b.raysLeaving[c], lo, hi);
+        md << line << (c + 1 < kLeftClasses ? "," : ".\n");
+    }
     return md.str();
 }
 
