@@ -73,6 +73,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "Weight of the diffuse-irradiance loss (the light each axis-facing diffuse "
                     "patch receives) beside the per-pixel envmap losses")
         ->capture_default_str();
+    cmd->add_option("--irradiance-focus", o->irradianceFocus,
+                    "Where the irradiance loss asks for light: 0 from every envmap pixel alike, 1 "
+                    "from each in proportion to its predicted brightness (the lamps and windows "
+                    "the model already predicts), higher more so")
+        ->capture_default_str();
     cmd->add_option("--envmap-mse-weight", o->envmapSquaredWeight,
                     "Weight of the squared sRGB error of envmaps (what PSNR scores) beside the L1 "
                     "losses; 0: off")

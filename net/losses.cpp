@@ -131,6 +131,19 @@ torch::Tensor irradianceLoss(const torch::Tensor& predicted, const torch::Tensor
     return ((ep - et).abs() / (et + floor)).mean();
 }
 
+torch::Tensor focusedIrradianceLoss(const torch::Tensor& predicted, const torch::Tensor& target,
+                                    double focus) {
+    if (focus == 0.0) return irradianceLoss(predicted, target);
+    const auto linear = predicted.clamp_min(0.0);
+    const auto frozen = linear.detach();
+    const auto luminance = 0.2126 * frozen.narrow(1, 0, 1) + 0.7152 * frozen.narrow(1, 1, 1) +
+                           0.0722 * frozen.narrow(1, 2, 1);  // [N, 1, H, W]
+    auto share = (luminance / (luminance.mean({2, 3}, true) + 1e-12)).pow(focus);
+    share = share / (share.mean({2, 3}, true) + 1e-12);
+    // The forward value is `linear`'s; the gradient reaching each pixel is scaled by its share.
+    return irradianceLoss(frozen + share * (linear - frozen), target);
+}
+
 torch::Tensor voxelLoss(const std::vector<torch::Tensor>& predicted,
                         const std::vector<torch::Tensor>& target) {
     constexpr double kAlphaFloor = 1e-4, kCrossEntropyWeight = 0.1;

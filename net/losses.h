@@ -32,6 +32,15 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Te
 torch::Tensor irradianceLoss(const torch::Tensor& predictedLinear,
                              const torch::Tensor& targetLinear);
 
+// irradianceLoss with the same value, its gradient focused on the prediction's brightest
+// pixels: each pixel's share of the gradient is (Y / mean Y)^focus, Y the predicted luminance
+// (detached; shares normalised to a mean of 1 per envmap). The plain loss asks every pixel for
+// light alike, and the per-pixel losses then pay for a room brightened all over; at focus 1
+// it asks each pixel for the same relative gain, so the light goes where the prediction
+// already holds lamps and windows. focus 0 is irradianceLoss.
+torch::Tensor focusedIrradianceLoss(const torch::Tensor& predictedLinear,
+                                    const torch::Tensor& targetLinear, double focus);
+
 // The six axis irradiances [N, 3, 6] of envmaps [N, 3, H, W] (normals +x, -x, +y, -y, +z, -z).
 torch::Tensor axisIrradianceTensor(const torch::Tensor& envmaps);
 

@@ -52,6 +52,8 @@ void TrainOptions::validate() const {
         throw InputError("--average-decay must be in [0, 1)");
     if (!(irradianceWeight >= 0 && irradianceWeight <= 100))
         throw InputError("--irradiance-weight must be in [0, 100]");
+    if (!(irradianceFocus >= 0 && irradianceFocus <= 4))
+        throw InputError("--irradiance-focus must be in [0, 4]");
     if (!(envmapSquaredWeight >= 0 && envmapSquaredWeight <= 100))
         throw InputError("--envmap-mse-weight must be in [0, 100]");
     if (!(viewHdrWeight >= 0 && viewHdrWeight <= 100))
@@ -525,6 +527,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
              << (vgg ? "VGG-19 perceptual (" + o.vggWeights + ")"
                      : std::string("L1 + gradients (substitute for VGG-19)"))
              << "; envmaps also " << o.irradianceWeight << " x irradiance";
+    if (o.irradianceFocus > 0)
+        progress << " (gradient focused on bright pixels, power " << o.irradianceFocus << ")";
     if (o.envmapSquaredWeight > 0) progress << ", " << o.envmapSquaredWeight << " x squared sRGB";
     if (o.viewHdrWeight > 0)
         progress << "; views also " << o.viewHdrWeight << " x HDR (unclipped tgt.exr)";
@@ -601,7 +605,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                         envLoss = envLoss + o.closureWeight * closureLoss(envmap.transmittance);
                     envLoss = envLoss + lossOf(rendered, ex.envmaps[k]) +
                               hdrImageLoss(rendered, ex.envmaps[k]) +
-                              o.irradianceWeight * irradianceLoss(rendered, ex.envmaps[k]);
+                              o.irradianceWeight *
+                                  focusedIrradianceLoss(rendered, ex.envmaps[k], o.irradianceFocus);
                     if (o.envmapSquaredWeight > 0)
                         envLoss = envLoss +
                                   o.envmapSquaredWeight * squaredImageLoss(rendered, ex.envmaps[k]);

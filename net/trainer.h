@@ -71,6 +71,10 @@ struct TrainOptions {
     // Its relative error is 0.3-1 where a model misses the lamps, about the size of the
     // per-pixel losses; 0.5 keeps those in charge of where things are.
     double irradianceWeight = 0.5;
+    // Where the irradiance loss's gradient goes (net/losses.h focusedIrradianceLoss): 0 to
+    // every pixel alike, 1 to each pixel in proportion to its predicted luminance (a relative
+    // gain), so that the light it asks for lands on the lamps and windows the model predicts.
+    double irradianceFocus = 0.0;
     // Weight of the squared sRGB error of envmaps (net/losses.h squaredImageLoss, the PSNR's
     // own quantity) beside the L1 losses; 0: off. Its values are ~0.03 where L1's are ~0.15,
     // so a weight of a few units is needed to move the L1's median towards the mean.

@@ -77,6 +77,11 @@ lighthouse_cli_error(train_unknown_config
   EXPECT "unknown configuration 'huge'"
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS train --data . --config huge -o train_bad.pt)
+lighthouse_cli_error(train_irradiance_focus_out_of_range
+  EXPECT "--irradiance-focus must be in .0, 4."
+  ABSENT train_bad.pt
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS train --data . --irradiance-focus 9 -o train_bad.pt)
 # lighthouse-net's parse errors are the same one line as lighthouse's.
 lighthouse_cli_error(parse_unknown_option_of_train
   PARSE_ERROR EXPECT "not expected: --bogus.*run 'lighthouse train --help'"

@@ -132,6 +132,31 @@ TEST(Losses, IrradianceLossIsZeroOnIdenticalInputsAndIndifferentToWhereALampIs) 
               0.5 * hdrImageLoss(room, lamp).item<double>());
 }
 
+TEST(Losses, FocusedIrradianceLossKeepsTheValueAndSendsTheGradientToBrightPixels) {
+    // A dim room with one brighter patch (a predicted lamp), against a truth holding more light.
+    auto room = torch::full({1, 3, 30, 60}, 0.1, torch::kFloat64);
+    room.narrow(2, 2, 2).narrow(3, 10, 2).fill_(4.0);
+    const auto truth = torch::full({1, 3, 30, 60}, 0.5, torch::kFloat64);
+    const auto gradientOf = [&](double focus) {
+        auto x = room.clone().requires_grad_(true);
+        const auto loss = focusedIrradianceLoss(x, truth, focus);
+        loss.backward();
+        return std::make_pair(loss.item<double>(), x.grad());
+    };
+    const auto [plainValue, plain] = gradientOf(0.0);
+    const auto [focusedValue, focused] = gradientOf(1.0);
+    EXPECT_DOUBLE_EQ(plainValue, irradianceLoss(room, truth).item<double>());
+    EXPECT_NEAR(focusedValue, plainValue, 1e-12);
+    // Mirror columns of one row (theta and -theta): the same solid angle and the same sum of
+    // cosines over the six normals, so the plain loss asks both pixels for the same light (every
+    // normal receives too little), the focused one asks the lamp for 40 (4.0 / 0.1) times as much.
+    const auto lampPixel = [](const torch::Tensor& g) { return g[0][0][2][10].item<double>(); };
+    const auto dimPixel = [](const torch::Tensor& g) { return g[0][0][2][49].item<double>(); };
+    EXPECT_NEAR(lampPixel(plain) / dimPixel(plain), 1.0, 1e-9);
+    EXPECT_NEAR(lampPixel(focused) / dimPixel(focused), 40.0, 1e-6);
+    EXPECT_LT(lampPixel(focused), 0.0);  // more light lowers the loss
+}
+
 TEST(Losses, VoxelLossIsMinimalOnIdenticalCubesAndKnownOtherwise) {
     auto cube = torch::zeros({1, 4, 16, 16, 16});
     cube.narrow(1, 3, 1).narrow(2, 0, 8).fill_(1.0);  // the far half is opaque
