@@ -138,8 +138,9 @@ torch::Tensor focusedIrradianceLoss(const torch::Tensor& predicted, const torch:
     const auto frozen = linear.detach();
     const auto luminance = 0.2126 * frozen.narrow(1, 0, 1) + 0.7152 * frozen.narrow(1, 1, 1) +
                            0.0722 * frozen.narrow(1, 2, 1);  // [N, 1, H, W]
-    auto share = (luminance / (luminance.mean({2, 3}, true) + 1e-12)).pow(focus);
-    share = share / (share.mean({2, 3}, true) + 1e-12);
+    // (Y / mean Y)^focus normalised to a mean of 1 is Y^focus over its mean.
+    const auto weight = luminance.pow(focus);
+    const auto share = weight / (weight.mean({2, 3}, true) + 1e-12);
     // The forward value is `linear`'s; the gradient reaching each pixel is scaled by its share.
     return irradianceLoss(frozen + share * (linear - frozen), target);
 }
