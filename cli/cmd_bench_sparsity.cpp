@@ -1,4 +1,5 @@
-// `lighthouse bench-sparsity FILE.vdb [--taus 1e-3,...] [--dataset DIR] [-o DIR] [--half]`:
+// `lighthouse bench-sparsity FILE.vdb [--taus 1e-3,...] [--dataset DIR] [-o DIR] [--half]
+//  [--mantissa-bits N]`:
 // memory (active voxels, bytes in memory and on disk) against envmap error for several
 // sparsity bounds (vdb/sparsity.h), as memory_error.csv/.md/.svg, and where the bytes in
 // memory go (memory_breakdown.csv/.md). Any .vdb: oracle, predicted (dense fog: the query
@@ -13,6 +14,7 @@
 #include "render/envmap.h"
 #include "render/render_volume.h"
 #include "study/memory_error.h"
+#include "vdb/mantissa_rounding.h"
 #include "vdb/sparsity.h"
 
 #include <cmath>
@@ -118,6 +120,10 @@ void runBenchSparsity(BenchSparsityOptions& o) {
     EnvmapOptions{o.bench.width, o.bench.height, MarchOptions{}}.validate();
     o.bench.taus = parseTaus(o.taus);
     o.bench.halfPrecision = o.half;
+    if (o.half && o.bench.mantissaBits > 0)
+        throw InputError(
+            "--half and --mantissa-bits each choose the file the pruned rows render; give one");
+    validateMantissaBits(o.bench.mantissaBits, false);
     if (o.bench.points < 1 || o.bench.points > 1000)
         throw InputError("--count must be in [1, 1000]");
     const LightingVolume volume = loadVolumeForCli(o.file, o.strict);
@@ -169,6 +175,9 @@ void addBenchSparsityCommand(CLI::App& app) {
         ->capture_default_str();
     addHalfFlag(cmd, o->half,
                 "Render the pruned volumes through half precision, as a --half file reads back");
+    addMantissaBitsOption(cmd, o->bench.mantissaBits,
+                          "Also store each setting with values rounded to N mantissa bits "
+                          "(1-22), and render the pruned volumes from that file; 0: not");
     addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runBenchSparsity(*o); });
 }

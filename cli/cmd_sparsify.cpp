@@ -1,5 +1,7 @@
 // `lighthouse sparsify IN.vdb -o OUT.vdb [--target-db 0.1] [--base-psnr 30] [--tau T]
-//  [--levels-from-depth NEAR,FAR] [--half]`: stores only what the scene needs (vdb/sparsity.h).
+//  [--levels-from-depth NEAR,FAR] [--half] [--mantissa-bits N]`: stores only what the scene
+// needs (vdb/sparsity.h), optionally with values rounded to N mantissa bits
+// (vdb/mantissa_rounding.h).
 // Without --tau the bound is searched: the largest tau whose envmaps (at random free-space
 // points, through the file's precision) stay within the PSNR that guarantees at most
 // --target-db of loss for a volume that reaches --base-psnr against ground truth.
@@ -9,11 +11,13 @@
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "sparsify/bound_search.h"
+#include "vdb/mantissa_rounding.h"
 #include "vdb/sparsity.h"
 
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <string>
 
 namespace lh::cli {
 
@@ -25,6 +29,7 @@ struct SparsifyOptions {
     double basePsnr = 30;   // PSNR the volume reaches against ground truth, dB (higher: stricter)
     std::optional<double> tau;  // explicit bound; not given: searched from targetDb
     bool half = false;
+    int mantissaBits = 0;  // 0: values as they are
     bool strict = false;
     int points = 4;  // --count
 };
@@ -44,6 +49,7 @@ void runSparsify(const SparsifyOptions& o) {
     if (!(o.basePsnr > 0 && o.basePsnr < 100))
         throw InputError("--base-psnr must be in (0, 100) dB");
     if (o.points < 1 || o.points > 64) throw InputError("--count must be in [1, 64]");
+    validateMantissaBits(o.mantissaBits, o.half);
     SparsityOptions options;
     if (!o.depthRange.empty()) {
         const Vec3d range = parsePoint(o.depthRange + ",1", "--levels-from-depth NEAR,FAR");
@@ -56,6 +62,7 @@ void runSparsify(const SparsifyOptions& o) {
         BoundSearchOptions search;
         search.points = o.points;
         search.halfPrecision = o.half;
+        search.mantissaBits = o.mantissaBits;
         const double required = requiredPsnrForLoss(o.targetDb, o.basePsnr);
         std::fprintf(stderr, "sparsify: envmaps must stay within %.1f dB of the unpruned ones\n",
                      required);
@@ -66,17 +73,19 @@ void runSparsify(const SparsifyOptions& o) {
     }
     SparsityStats stats;
     const LightingVolume pruned = sparsify(volume, options, &stats);
-    warnOfHalfClamping(saveSparseVolume(o.output, pruned, o.half), "--half");
+    warnOfHalfClamping(saveSparseVolume(o.output, pruned, o.half, o.mantissaBits), "--half");
     std::printf(
         "tau %.3g (rays up to %.3g scene units, brightest colour %.3g: voxels of density <= %.3g "
         "per unit "
         "dropped): %llu -> %llu active voxels, %.2f -> %.2f MB in memory, %d level(s) dropped, "
-        "%s on disk (%s, Blosc)\n",
+        "%s on disk (%s%s, Blosc)\n",
         options.tau, stats.rayLength, stats.maxColour,
         stats.maxColour > 0 ? stats.fieldBound / stats.maxColour : 0.0,
         static_cast<unsigned long long>(stats.activeBefore),
         static_cast<unsigned long long>(stats.activeAfter), stats.memoryBefore / 1e6,
-        stats.memoryAfter / 1e6, stats.levelsDropped, o.output.c_str(), o.half ? "half" : "float");
+        stats.memoryAfter / 1e6, stats.levelsDropped, o.output.c_str(), o.half ? "half" : "float",
+        o.mantissaBits > 0 ? (", " + std::to_string(o.mantissaBits) + "-bit mantissas").c_str()
+                           : "");
 }
 
 }  // namespace
@@ -100,6 +109,10 @@ void addSparsifyCommand(CLI::App& app) {
                     "Random free-space points for the search (least dense points in fog)")
         ->capture_default_str();
     addHalfFlag(cmd, o->half);
+    addMantissaBitsOption(cmd, o->mantissaBits,
+                          "Round every value to N mantissa bits (1-22; 1-9 with --half) for a "
+                          "smaller file: relative error at most 2^-(N+1), 7 = 0.4%; 0 keeps "
+                          "the values");
     addStrictFlag(cmd, o->strict);
     cmd->callback([o] { runSparsify(*o); });
 }

@@ -11,6 +11,10 @@ CLI::Option* addStrictFlag(CLI::App* cmd, bool& strict) {
                          "Refuse NaN/Inf/negative values in the volume instead of sanitising them");
 }
 
+CLI::Option* addMantissaBitsOption(CLI::App* cmd, int& bits, const std::string& help) {
+    return cmd->add_option("--mantissa-bits", bits, help)->capture_default_str();
+}
+
 CLI::Option* addHalfFlag(CLI::App* cmd, bool& half, const std::string& help) {
     return cmd->add_flag("--half", half, help);
 }

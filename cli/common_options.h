@@ -11,6 +11,10 @@ namespace lh::cli {
 // --strict: refuse NaN, Inf and negative values in the volume read, instead of sanitising them.
 CLI::Option* addStrictFlag(CLI::App* cmd, bool& strict);
 
+// --mantissa-bits N: round every value of the written volume to N mantissa bits (lossy, a
+// smaller file; vdb/mantissa_rounding.h). 0, the default, keeps the values as they are.
+CLI::Option* addMantissaBitsOption(CLI::App* cmd, int& bits, const std::string& help);
+
 // --half: store 16-bit halves instead of 32-bit floats; without it, floats. `help` says what
 // is stored, when it is not a volume file.
 CLI::Option* addHalfFlag(CLI::App* cmd, bool& half,

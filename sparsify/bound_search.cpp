@@ -31,8 +31,9 @@ BoundChoice chooseSparsityBound(const LightingVolume& volume, double requiredPsn
         SparsityOptions so;
         so.tau = tau;
         const LightingVolume pruned = sparsify(volume, so);
-        const RenderVolume render(o.halfPrecision ? asStored(pruned, true, scratch, nullptr)
-                                                  : pruned);
+        const bool stored = o.halfPrecision || o.mantissaBits > 0;
+        const RenderVolume render(
+            stored ? asStored(pruned, o.halfPrecision, scratch, nullptr, o.mantissaBits) : pruned);
         const EnvmapSetError e = compareEnvmapSets(
             renderEnvmapsAt(render, points, o.width, o.height, nullptr, o.errorMarch), reference);
         if (progress) {

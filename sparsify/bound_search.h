@@ -24,6 +24,7 @@ struct BoundSearchOptions {
     int width = 240, height = 120;
     uint64_t seed = 1;
     bool halfPrecision = true;  // render what a half-precision file holds
+    int mantissaBits = 0;       // render what a file rounded to these bits holds (0: unrounded)
     std::string scratchDir;     // where trial files go (empty: a fresh temporary directory)
     // Errors are measured with fine steps, so that they show what pruning changed and not
     // where the default steps happen to fall (pruning moves level boundaries, hence steps).
@@ -35,7 +36,8 @@ struct BoundChoice {
     double psnr = 100;  // its PSNR against the unpruned envmaps, dB
 };
 // Tries bounds from 0.1 down by factors of sqrt(10) to 1e-6 and returns the first whose
-// envmaps (optionally through half precision) reach `requiredPsnr` against the unpruned ones.
+// envmaps (optionally through the file's half precision or mantissa rounding) reach
+// `requiredPsnr` against the unpruned ones.
 BoundChoice chooseSparsityBound(const LightingVolume& volume, double requiredPsnr,
                                 const BoundSearchOptions& options,
                                 const std::function<void(const std::string&)>& progress = {});

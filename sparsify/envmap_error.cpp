@@ -55,9 +55,10 @@ std::string scratchDirectory(const std::string& requested) {
 }
 
 LightingVolume asStored(const LightingVolume& volume, bool half, const std::string& scratch,
-                        uint64_t* bytes) {
-    const std::string path = scratch + (half ? "/half.vdb" : "/float.vdb");
-    saveSparseVolume(path, volume, half);
+                        uint64_t* bytes, int mantissaBits) {
+    const std::string path =
+        scratch + (half ? "/half" : "/float") + "_m" + std::to_string(mantissaBits) + ".vdb";
+    saveSparseVolume(path, volume, half, mantissaBits);
     if (bytes) *bytes = std::filesystem::file_size(path);
     LightingVolume loaded = loadVolume(path);
     std::filesystem::remove(path);

@@ -33,9 +33,9 @@ std::vector<ImageRGB> renderEnvmapsAt(const RenderVolume& volume, const std::vec
 std::string scratchDirectory(const std::string& requested);
 
 // The volume as a file stores it: written Blosc-compressed into `scratch` (as half floats when
-// `half`, vdb/sparsity.h saveSparseVolume), read back, and the file removed. With `bytes`, the
-// file's size is written there.
+// `half`, rounded to `mantissaBits` when that is not 0; vdb/sparsity.h saveSparseVolume), read
+// back, and the file removed. With `bytes`, the file's size is written there.
 LightingVolume asStored(const LightingVolume& volume, bool half, const std::string& scratch,
-                        uint64_t* bytes);
+                        uint64_t* bytes, int mantissaBits = 0);
 
 }  // namespace lh

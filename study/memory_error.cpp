@@ -60,8 +60,13 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(
         row.memoryBytes = v.memoryBytes();
         row.levels = int(v.levels.size());
         asStored(v, false, scratch, &row.diskBytesFloat);
-        const LightingVolume stored = asStored(v, true, scratch, &row.diskBytesHalf);
-        const RenderVolume render(o.halfPrecision ? stored : v);
+        LightingVolume stored = asStored(v, true, scratch, &row.diskBytesHalf);
+        const bool rounded = o.mantissaBits > 0;
+        if (rounded) {
+            row.mantissaBits = o.mantissaBits;
+            stored = asStored(v, false, scratch, &row.diskBytesRounded, o.mantissaBits);
+        }
+        const RenderVolume render(o.halfPrecision || rounded ? stored : v);
         renderEnvmapsAt(render, points, o.width, o.height);  // warm caches before timing
         renderEnvmapsAt(render, points, o.width, o.height, &row.msPerEnvmap);
         const EnvmapSetError e = compareEnvmapSets(
@@ -85,6 +90,10 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(
         row.levels = int(volume.levels.size());
         asStored(volume, false, scratch, &row.diskBytesFloat);
         asStored(volume, true, scratch, &row.diskBytesHalf);
+        if (o.mantissaBits > 0) {
+            row.mantissaBits = o.mantissaBits;
+            asStored(volume, false, scratch, &row.diskBytesRounded, o.mantissaBits);
+        }
         renderEnvmapsAt(unprunedRender, points, o.width, o.height);
         renderEnvmapsAt(unprunedRender, points, o.width, o.height, &row.msPerEnvmap);
         if (!gt.empty()) row.psnrGroundTruth = gtPsnr(unprunedRender);
@@ -106,11 +115,18 @@ namespace {
 // Bytes (log) against PSNR vs the unpruned envmaps (linear, 100 = identical), in memory and
 // on disk, with the target (a tenth of dense storage) marked.
 std::string memorySvg(const std::vector<MemoryErrorRow>& rows, double denseBytes) {
+    const int bits = rows.empty() ? 0 : rows.front().mantissaBits;
     PlotSeries memory{"in memory", "#d62728", {}, true, {}},
-        disk{"on disk (Blosc, half)", "#1f77b4", {}, true, {}};
+        disk{bits > 0 ? "on disk (Blosc, " + std::to_string(bits) + "-bit mantissas)"
+                      : std::string("on disk (Blosc, half)"),
+             "#1f77b4",
+             {},
+             true,
+             {}};
     for (const auto& r : rows) {
         memory.points.push_back({double(r.memoryBytes), r.psnrVsUnpruned, r.setting});
-        disk.points.push_back({double(r.diskBytesHalf), r.psnrVsUnpruned, r.setting});
+        disk.points.push_back(
+            {double(bits > 0 ? r.diskBytesRounded : r.diskBytesHalf), r.psnrVsUnpruned, r.setting});
     }
     return svgPlot({"bytes", true, 10, 1.0},
                    {"PSNR vs unpruned envmaps (dB, 100 = identical)", false, 10, 0}, {memory, disk},
@@ -143,7 +159,13 @@ std::string memoryTargetMarkdown(const std::vector<MemoryErrorRow>& rows, double
                       100 * fraction, verdict[fraction <= kMemoryTargetFraction]);
         md << line;
     };
-    share("on disk (Blosc, half precision)", row->diskBytesHalf);
+    if (row->mantissaBits > 0)
+        share(("on disk (Blosc, floats rounded to " + std::to_string(row->mantissaBits) +
+               " mantissa bits)")
+                  .c_str(),
+              row->diskBytesRounded);
+    else
+        share("on disk (Blosc, half precision)", row->diskBytesHalf);
     share("in memory (OpenVDB grids)", row->memoryBytes);
     if (row->psnrGroundTruth >= 0)
         std::snprintf(line, sizeof line, "* PSNR against ground truth %.3f dB, %.3f dB lost: %s\n",
@@ -164,25 +186,35 @@ void writeMemoryErrorReport(const std::vector<MemoryErrorRow>& rows, const std::
     std::filesystem::create_directories(directory);
     std::ostringstream csv, md;
     const bool gt = !rows.empty() && rows.front().psnrGroundTruth >= 0;
+    const int bits = rows.empty() ? 0 : rows.front().mantissaBits;
     csv << "setting,tau,levels,active_voxels,memory_bytes,disk_bytes_float,disk_bytes_half,"
            "fraction_of_dense,"
-           "psnr_vs_unpruned_db,relative_rmse,ms_per_envmap,psnr_ground_truth_db,loss_db\n";
+           "psnr_vs_unpruned_db,relative_rmse,ms_per_envmap,psnr_ground_truth_db,loss_db,"
+           "mantissa_bits,disk_bytes_rounded\n";
     md << "| setting | levels | active voxels | MB in memory | MB on disk (float) | MB on disk "
-          "(half) | memory / dense | "
-          "PSNR vs unpruned (dB) | RMSE / mean | ms / envmap |"
+          "(half) |"
+       << (bits > 0 ? " MB on disk (" + std::to_string(bits) + "-bit mantissas) |" : "")
+       << " memory / dense | PSNR vs unpruned (dB) | RMSE / mean | ms / envmap |"
        << (gt ? " PSNR vs ground truth (dB) | loss (dB) |" : "")
-       << "\n|---|---|---|---|---|---|---|---|---|---|" << (gt ? "---|---|" : "") << "\n";
+       << "\n|---|---|---|---|---|---|---|---|---|---|" << (bits > 0 ? "---|" : "")
+       << (gt ? "---|---|" : "") << "\n";
     for (const auto& r : rows) {
         csv << r.setting << "," << r.tau << "," << r.levels << "," << r.activeVoxels << ","
             << r.memoryBytes << "," << r.diskBytesFloat << "," << r.diskBytesHalf << ","
             << r.memoryBytes / denseBytes << "," << r.psnrVsUnpruned << "," << r.relativeRmse << ","
-            << r.msPerEnvmap << "," << r.psnrGroundTruth << "," << r.lossDb << "\n";
+            << r.msPerEnvmap << "," << r.psnrGroundTruth << "," << r.lossDb << "," << r.mantissaBits
+            << "," << r.diskBytesRounded << "\n";
         char line[512];
-        std::snprintf(line, sizeof line,
-                      "| %s | %d | %llu | %.2f | %.3f | %.3f | %.3f | %.1f | %.1e | %.1f |",
+        std::snprintf(line, sizeof line, "| %s | %d | %llu | %.2f | %.3f | %.3f |",
                       r.setting.c_str(), r.levels, static_cast<unsigned long long>(r.activeVoxels),
-                      r.memoryBytes / 1e6, r.diskBytesFloat / 1e6, r.diskBytesHalf / 1e6,
-                      r.memoryBytes / denseBytes, r.psnrVsUnpruned, r.relativeRmse, r.msPerEnvmap);
+                      r.memoryBytes / 1e6, r.diskBytesFloat / 1e6, r.diskBytesHalf / 1e6);
+        md << line;
+        if (bits > 0) {
+            std::snprintf(line, sizeof line, " %.3f |", r.diskBytesRounded / 1e6);
+            md << line;
+        }
+        std::snprintf(line, sizeof line, " %.3f | %.1f | %.1e | %.1f |", r.memoryBytes / denseBytes,
+                      r.psnrVsUnpruned, r.relativeRmse, r.msPerEnvmap);
         md << line;
         if (gt) {
             // A loss that rounds to zero prints as 0.000, not -0.000.

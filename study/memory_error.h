@@ -1,6 +1,6 @@
 // Memory against error of a lighting volume ("storing only what the scene needs"): the
-// volume sparsified at several bounds (vdb/sparsity.h), each measured in memory, on disk (float
-// and half) and by its envmaps against the unpruned volume's, and against ground truth with a
+// volume sparsified at several bounds (vdb/sparsity.h), each measured in memory, on disk (float,
+// half, and optionally floats rounded to fewer mantissa bits) and by its envmaps against the unpruned volume's, and against ground truth with a
 // data set; the storage target and the report of `lighthouse bench-sparsity`.
 #pragma once
 
@@ -17,7 +17,10 @@ namespace lh {
 struct MemoryErrorOptions {
     std::vector<double> taus{1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1};  // vdb/sparsity.h bounds
     bool halfPrecision = true;  // render what a half-precision file holds
-    int points = 4;             // random free-space query points (render/free_space.h)
+    // Not 0: each setting is also stored as floats rounded to this many mantissa bits
+    // (vdb/mantissa_rounding.h), and the pruned rows render that file instead.
+    int mantissaBits = 0;
+    int points = 4;  // random free-space query points (render/free_space.h)
     int width = 240, height = 120;
     uint64_t seed = 1;
     std::string datasetDir;  // optional: a directory with cameras.json and ground-truth envmaps
@@ -30,12 +33,14 @@ struct MemoryErrorOptions {
 };
 
 struct MemoryErrorRow {
-    std::string setting;          // "unpruned" or "tau 0.001"
-    double tau = 0;               // -1 for the unpruned volume
-    uint64_t activeVoxels = 0;    // active density voxels, all levels
-    uint64_t memoryBytes = 0;     // both grids in memory
-    uint64_t diskBytesFloat = 0;  // .vdb, Blosc, 32-bit floats
-    uint64_t diskBytesHalf = 0;   // .vdb, Blosc, 16-bit halves
+    std::string setting;            // "unpruned" or "tau 0.001"
+    double tau = 0;                 // -1 for the unpruned volume
+    uint64_t activeVoxels = 0;      // active density voxels, all levels
+    uint64_t memoryBytes = 0;       // both grids in memory
+    uint64_t diskBytesFloat = 0;    // .vdb, Blosc, 32-bit floats
+    uint64_t diskBytesHalf = 0;     // .vdb, Blosc, 16-bit halves
+    int mantissaBits = 0;           // the rounding of diskBytesRounded (0: not measured)
+    uint64_t diskBytesRounded = 0;  // .vdb, Blosc, floats rounded to mantissaBits
     int levels = 0;
     double psnrVsUnpruned = 100;  // dB, mean over points (identical images capped at 100)
     double relativeRmse = 0;      // RMSE / mean radiance against the unpruned envmaps
@@ -55,8 +60,9 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(
 // this many dB of envmap PSNR lost against ground truth.
 constexpr double kMemoryTargetFraction = 0.1, kMemoryTargetLossDb = 0.1;
 
-// The target read from the row at bound `tau` (the default's): on disk, in memory, and the
-// loss against ground truth where the rows have it. Markdown, appended to memory_error.md.
+// The target read from the row at bound `tau` (the default's): on disk (the rounded file where
+// the rows have one, else the half one), in memory, and the loss against ground truth where
+// the rows have it. Markdown, appended to memory_error.md.
 std::string memoryTargetMarkdown(const std::vector<MemoryErrorRow>& rows, double denseBytes,
                                  double tau);
 

@@ -282,8 +282,8 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
 }
 
 VolumeSaveReport saveSparseVolume(const std::string& path, const LightingVolume& volume,
-                                  bool halfPrecision) {
-    return saveVolume(path, volume, VolumeSaveOptions{halfPrecision});
+                                  bool halfPrecision, int mantissaBits) {
+    return saveVolume(path, volume, VolumeSaveOptions{halfPrecision, mantissaBits});
 }
 
 }  // namespace lh

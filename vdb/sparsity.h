@@ -109,10 +109,11 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
 int levelsForDepthRange(double near, double far, int maxLevels = 5);
 
 // Writes a sparsified volume Blosc-compressed, optionally as half floats (values above
-// kHalfSafeMax clamped, vdb/volume_io.h); the relative rounding error of every stored value is
-// then at most 2^-11.
+// kHalfSafeMax clamped, vdb/volume_io.h; the relative rounding error of every stored value is
+// then at most 2^-11), and optionally rounded to `mantissaBits` first (0: not rounded;
+// vdb/mantissa_rounding.h, relative error at most 2^-(bits+1)).
 VolumeSaveReport saveSparseVolume(const std::string& path, const LightingVolume& volume,
-                                  bool halfPrecision);
+                                  bool halfPrecision, int mantissaBits = 0);
 
 // Active density voxels of every level (tiles count their voxels).
 openvdb::Index64 activeDensityVoxels(const LightingVolume& volume);

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "vdb/mantissa_rounding.h"
 #include "vdb/safe_read.h"
 
 #include <openvdb/io/File.h>
@@ -147,13 +148,15 @@ std::size_t clampToHalf(GridT& grid) {
 }
 
 // The grid as it is written: a shallow copy (metadata and names are set on it, the tree is
-// shared), or with half precision and values beyond it, a deep copy clamped to kHalfSafeMax
-// (adding the count to `clamped`).
+// shared), or a deep copy with its values rounded to `options.mantissaBits` and, with half
+// precision and values beyond it, clamped to kHalfSafeMax (adding the count to `clamped`).
 template <typename GridPtr>
-GridPtr gridToSave(const GridPtr& grid, bool halfPrecision, std::size_t& clamped) {
-    if (!halfPrecision || !exceedsHalf(*grid)) return grid->copy();
+GridPtr gridToSave(const GridPtr& grid, const VolumeSaveOptions& options, std::size_t& clamped) {
+    const bool clamp = options.halfPrecision && exceedsHalf(*grid);
+    if (!clamp && options.mantissaBits == 0) return grid->copy();
     GridPtr copy = grid->deepCopy();
-    clamped += clampToHalf(*copy);
+    if (options.mantissaBits > 0) roundGridToMantissaBits(*copy, options.mantissaBits);
+    if (clamp) clamped += clampToHalf(*copy);
     return copy;
 }
 
@@ -170,6 +173,7 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
     VolumeSaveReport report;
     initialiseOpenVdb();
     if (!volume && !mpi) throw InputError("nothing to save to '" + path + "'");
+    validateMantissaBits(options.mantissaBits, options.halfPrecision, "mantissa bits");
     openvdb::GridPtrVec grids;
     openvdb::MetaMap fileMeta;
     fileMeta.insertMeta("lighthouse_format_version", openvdb::Int32Metadata(kVolumeFormatVersion));
@@ -183,10 +187,8 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
                                 openvdb::StringMetadata(cameraToJson(*volume->refCamera)));
         for (std::size_t k = 0; k < volume->levels.size(); ++k) {
             const VolumeLevel& level = volume->levels[k];
-            const auto density =
-                gridToSave(level.density, options.halfPrecision, report.valuesClampedToHalf);
-            const auto color =
-                gridToSave(level.color, options.halfPrecision, report.valuesClampedToHalf);
+            const auto density = gridToSave(level.density, options, report.valuesClampedToHalf);
+            const auto color = gridToSave(level.color, options, report.valuesClampedToHalf);
             for (openvdb::GridBase::Ptr g :
                  {openvdb::GridBase::Ptr(density), openvdb::GridBase::Ptr(color)}) {
                 g->setName(g == density ? densityGridName(int(k)) : colorGridName(int(k)));

@@ -55,3 +55,28 @@ lighthouse_cli_ok(bench_sparsity_fog
   ARGS bench-sparsity fog.vdb --count 1 --size 16x8 --taus 1e-3,0.1 -o bench_sparsity_fog)
 set_tests_properties(cli.ok.sparsity_make_fog PROPERTIES FIXTURES_SETUP lighthouse_fog)
 set_tests_properties(cli.ok.bench_sparsity_fog PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_fog")
+# Rounding to fewer mantissa bits: a bit count outside the range, or beyond what half floats
+# keep, is refused before anything is written; a good run says what it stored.
+lighthouse_cli_error(sparsify_mantissa_bits_out_of_range
+  EXPECT "--mantissa-bits must be in .1, 22., got 30"
+  ABSENT sparse_m30.vdb
+  ARGS sparsify example.vdb -o sparse_m30.vdb --tau 1e-3 --mantissa-bits 30)
+lighthouse_cli_error(sparsify_mantissa_bits_beyond_half
+  EXPECT "--mantissa-bits must be in .1, 9. for half precision"
+  ABSENT sparse_half_m10.vdb
+  ARGS sparsify example.vdb -o sparse_half_m10.vdb --tau 1e-3 --half --mantissa-bits 10)
+lighthouse_cli_error(bench_sparsity_half_and_mantissa_bits
+  EXPECT "--half and --mantissa-bits each choose"
+  ABSENT bench_sparsity_half_m7/memory_error.csv
+  ARGS bench-sparsity example.vdb --half --mantissa-bits 7 -o bench_sparsity_half_m7)
+lighthouse_cli_ok(sparsify_fog_mantissa_bits
+  STDOUT "sparse_fog_m7[.]vdb on disk [(]float, 7-bit mantissas, Blosc"
+  FILES sparse_fog_m7.vdb
+  ARGS sparsify fog.vdb -o sparse_fog_m7.vdb --tau 1e-3 --mantissa-bits 7)
+lighthouse_cli_ok(bench_sparsity_fog_mantissa_bits
+  STDOUT "MB on disk [(]7-bit mantissas[)]" "floats rounded to 7 mantissa bits"
+  FILES bench_sparsity_fog_m7/memory_error.csv
+  ARGS bench-sparsity fog.vdb --count 1 --size 16x8 --taus 1e-4 --mantissa-bits 7
+       -o bench_sparsity_fog_m7)
+set_tests_properties(cli.ok.sparsify_fog_mantissa_bits cli.ok.bench_sparsity_fog_mantissa_bits
+  PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_fog")

@@ -34,6 +34,14 @@ TEST(MemoryTarget, JudgesTheDefaultBoundsRow) {
     lossy[1].psnrGroundTruth = -1;
     EXPECT_NE(memoryTargetMarkdown(lossy, 1e6, 1e-4).find("not measured without ground truth"),
               std::string::npos);
+    // With rounded files measured (bench-sparsity --mantissa-bits), the rounded file is judged.
+    std::vector<MemoryErrorRow> rounded = rows;
+    rounded[1].mantissaBits = 7, rounded[1].diskBytesRounded = 120'000;
+    EXPECT_NE(memoryTargetMarkdown(rounded, 1e6, 1e-4)
+                  .find("on disk (Blosc, floats rounded to 7 mantissa bits): 0.12 MB, 12.0% of "
+                        "dense: **not met**"),
+              std::string::npos)
+        << memoryTargetMarkdown(rounded, 1e6, 1e-4);
     // A run without a row at the bound says so.
     EXPECT_NE(memoryTargetMarkdown(rows, 1e6, 1e-3)
                   .find("not measured: this run has no row at that bound"),
