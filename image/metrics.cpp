@@ -4,6 +4,7 @@
 #include "image/envmap_layout.h"
 #include "image/image_io.h"
 #include "image/irradiance_weights.h"
+#include "image/luminance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,10 +62,7 @@ double norm(const float* v) {
 
 // Rec. 709 luminance of linear RGB, negatives (a broken prediction's) counted as 0 so that
 // ln(1 + Y) stays defined.
-double luminance(const float* rgb) {
-    const double y = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-    return std::max(y, 0.0);
-}
+double luminance(const float* rgb) { return std::max(rec709Luminance(rgb), 0.0); }
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include "net/losses.h"
 
 #include "image/irradiance_weights.h"
+#include "image/luminance.h"
 #include "net/tensor_image.h"
 #include "net/volume_render.h"
 
@@ -136,8 +137,8 @@ torch::Tensor focusedIrradianceLoss(const torch::Tensor& predicted, const torch:
     if (focus == 0.0) return irradianceLoss(predicted, target);
     const auto linear = predicted.clamp_min(0.0);
     const auto frozen = linear.detach();
-    const auto luminance = 0.2126 * frozen.narrow(1, 0, 1) + 0.7152 * frozen.narrow(1, 1, 1) +
-                           0.0722 * frozen.narrow(1, 2, 1);  // [N, 1, H, W]
+    const auto luminance = kLumaR * frozen.narrow(1, 0, 1) + kLumaG * frozen.narrow(1, 1, 1) +
+                           kLumaB * frozen.narrow(1, 2, 1);  // [N, 1, H, W]
     // (Y / mean Y)^focus normalised to a mean of 1 is Y^focus over its mean.
     const auto weight = luminance.pow(focus);
     const auto share = weight / (weight.mean({2, 3}, true) + 1e-12);

@@ -6,6 +6,7 @@
 #include "core/random.h"
 #include "image/contact_sheet.h"
 #include "image/image_io.h"
+#include "image/luminance.h"
 #include "synth/oracle.h"
 #include "synth/scene_generator.h"
 #include "synth/scene_json.h"
@@ -38,8 +39,6 @@ constexpr double kEnvmapClearance = 0.3;             // metres from an envmap po
 struct Rejected : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
-
-double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
 ImageRGB maskImage(const std::vector<uint8_t>& mask, int width, int height) {
     ImageRGB image(width, height);
@@ -135,7 +134,7 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
             ImageRGB ref = renderSceneView(tracer, field, rig.ref, o.supersample);
             std::vector<double> luminances;
             for (std::size_t i = 0; i < ref.pixels.size(); i += 3)
-                luminances.push_back(luminance(&ref.pixels[i]));
+                luminances.push_back(rec709Luminance(&ref.pixels[i]));
             const auto middle = luminances.begin() + long(luminances.size() / 2);
             std::nth_element(luminances.begin(), middle, luminances.end());
             const double median = *middle;

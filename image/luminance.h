@@ -1,0 +1,15 @@
+// Luminance of linear RGB with the Rec. 709 (sRGB) primaries, shared by the metrics, the data
+// generator's exposure statistics and the training losses so that all three weigh colour alike.
+#pragma once
+
+namespace lh {
+
+// Y = kLumaR R + kLumaG G + kLumaB B (relative luminance; white (1, 1, 1) has Y = 1).
+constexpr double kLumaR = 0.2126, kLumaG = 0.7152, kLumaB = 0.0722;
+
+// Y of one linear RGB pixel (three floats); negative components are weighed as they are.
+inline double rec709Luminance(const float* rgb) {
+    return kLumaR * rgb[0] + kLumaG * rgb[1] + kLumaB * rgb[2];
+}
+
+}  // namespace lh
