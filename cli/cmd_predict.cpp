@@ -16,6 +16,7 @@
 #include "net/predictor.h"
 #include "net/training_data.h"
 #include "render/envmap.h"
+#include "vdb/mantissa_rounding.h"
 #include "vdb/volume_io.h"
 
 #include <nlohmann/json.hpp>
@@ -40,6 +41,7 @@ struct PredictOptions {
     bool alsoPng = false;
     float exposure = 1.f;
     bool half = false;
+    int mantissaBits = 0;                // 0: values as the network gives them
     float pruneAlpha = -1;               // the model's (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
 };
@@ -145,7 +147,7 @@ void runPredictBatch(const PredictOptions& o, int threads) {
         const net::Prediction p = predictor.predict(pair);
         const std::string output = item.name + ".vdb";
         warnOfHalfClamping(saveVdb((fs::path(o.output) / output).string(), &p.volume, &p.mpi,
-                                   VolumeSaveOptions{o.half}),
+                                   VolumeSaveOptions{o.half, o.mantissaBits}),
                            "--half");
         nlohmann::json entry = predictionEntry(item.name, item.ref, item.src, item.cameras, output);
         entry["index"] = i;
@@ -179,6 +181,7 @@ void runPredictBatch(const PredictOptions& o, int threads) {
 }
 
 void runPredict(const PredictOptions& o, int threads) {
+    validateMantissaBits(o.mantissaBits, o.half);
     if (!o.pairs.empty() || !o.examples.empty()) return runPredictBatch(o, threads);
     if (!o.shard.empty())
         throw InputError("--shard needs the batch form, --pairs LIST or --examples DIR");
@@ -225,7 +228,8 @@ void runPredict(const PredictOptions& o, int threads) {
         std::cerr << "predict: depth range from cameras.json: " << p.range.near << " .. "
                   << p.range.far << "\n";
     }
-    warnOfHalfClamping(saveVdb(o.output, &p.volume, &p.mpi, VolumeSaveOptions{o.half}), "--half");
+    warnOfHalfClamping(
+        saveVdb(o.output, &p.volume, &p.mpi, VolumeSaveOptions{o.half, o.mantissaBits}), "--half");
     std::cerr << "predict: network " << p.seconds << " s; " << p.volume.activeVoxelCount()
               << " active voxels (alpha >= " << predictor.pruneAlpha() << "), MPI of "
               << p.mpi.planeCount() << " planes -> " << o.output << "\n";
@@ -283,6 +287,10 @@ void addPredictCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     addImageFlags(cmd, o->alsoPng, o->exposure);  // for those envmaps: checked in runPredict
     addHalfFlag(cmd, o->half);
+    addMantissaBitsOption(cmd, o->mantissaBits,
+                          "Round every value of the volume and the MPI to N mantissa bits (1-22; "
+                          "1-9 with --half) for a smaller file: relative error at most "
+                          "2^-(N+1), 7 = 0.4%; 0 keeps the values");
     cmd->add_option(
            "-o,--output", o->output,
            "Output .vdb (MPI planes + lighting volume levels); a directory in the batch form")

@@ -160,6 +160,15 @@ GridPtr gridToSave(const GridPtr& grid, const VolumeSaveOptions& options, std::s
     return copy;
 }
 
+// The MPI's grids, fresh copies made for saving, rounded in place: alpha planes are
+// FloatGrids, colour planes Vec3SGrids.
+void roundMpiGrid(openvdb::GridBase& grid, int bits) {
+    if (auto* f = dynamic_cast<openvdb::FloatGrid*>(&grid))
+        roundGridToMantissaBits(*f, bits);
+    else if (auto* v = dynamic_cast<openvdb::Vec3SGrid*>(&grid))
+        roundGridToMantissaBits(*v, bits);
+}
+
 }  // namespace
 
 std::string halfClampWarning(const VolumeSaveReport& report) {
@@ -209,6 +218,7 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
         fileMeta.insertMeta("lighthouse_mpi_camera",
                             openvdb::StringMetadata(cameraToJson(mpi->camera)));
         for (auto& g : mpiToGrids(*mpi)) {
+            if (options.mantissaBits > 0) roundMpiGrid(*g, options.mantissaBits);
             g->setSaveFloatAsHalf(options.halfPrecision);
             grids.push_back(g);
         }

@@ -43,7 +43,7 @@ struct VolumeSaveOptions {
     bool halfPrecision = false;  // store float values as 16-bit halves on disk
     // 0: values as they are; N in [1, 22] (at most 9 with halfPrecision): every value of the
     // volume rounded to N mantissa bits first (vdb/mantissa_rounding.h), relative error at
-    // most 2^-(N+1), in exchange for a smaller file. The MPI is written as it is.
+    // most 2^-(N+1), in exchange for a smaller file; the MPI's values too.
     int mantissaBits = 0;
 };
 

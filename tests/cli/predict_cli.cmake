@@ -39,6 +39,11 @@ lighthouse_cli_error(predict_near_depth_implausibly_small
   ABSENT pred_tiny_near.vdb
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS predict ${LH_PAIR_ARGS} --cameras ${CMAKE_CURRENT_BINARY_DIR}/pair_tiny_near.json -o pred_tiny_near.vdb)
+lighthouse_cli_error(predict_mantissa_bits_out_of_range
+  EXPECT "--mantissa-bits must be in .1, 22., got 40"
+  ABSENT pred_m40.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --mantissa-bits 40 -o pred_m40.vdb)
 lighthouse_cli_error(predict_missing_image
   EXPECT "no_such_ref[.]png"
   ABSENT pred_bad3.vdb
@@ -110,6 +115,12 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
   lighthouse_cli_ok(predict_output_is_a_volume
     STDOUT "5 level[(]s[)]" "density_L4, color_L4, finest yes"
     ARGS info pred_ok.vdb)
+  # --mantissa-bits 7 rounds the volume and the MPI: the same prediction in a smaller file.
+  add_test(NAME cli.ok.predict_mantissa_bits_smaller
+    COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" --mantissa-bits 7 -o pred_m7.vdb > /dev/null && test $(stat -c %s pred_m7.vdb) -lt $(stat -c %s pred_ok.vdb)"
+            ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/src.png ${LH_PAIR}/cameras.json)
+  lighthouse_cli_properties(cli.ok.predict_mantissa_bits_smaller)
+  set_tests_properties(cli.ok.predict_mantissa_bits_smaller PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_predicted")
   set_tests_properties(cli.ok.predict_bundled_model PROPERTIES FIXTURES_SETUP lighthouse_predicted)
   set_tests_properties(cli.ok.predict_output_is_a_volume PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_predicted")
 endif()

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "vdb/example_volume.h"
+#include "vdb/mantissa_rounding.h"
 #include "vdb/volume_io.h"
 
 #include <gtest/gtest.h>
@@ -73,6 +74,35 @@ TEST(Mpi, SaveLoadRoundTripIsExact) {
     EXPECT_EQ(back.planes, mpi.planes);
     EXPECT_EQ(back.camera.fx, mpi.camera.fx);
     EXPECT_EQ(back.camera.width, 40);
+}
+
+// `predict --mantissa-bits` rounds the MPI as well as the volume: every colour and alpha reads
+// back within 2^-(N+1) of its value, with its dropped bits zero.
+TEST(Mpi, MantissaRoundingReachesEveryPlane) {
+    PinholeCamera cam = exampleCameras().ref;
+    cam.width = 40;
+    cam.height = 30;
+    cam.cx = 20;
+    cam.cy = 15;
+    Mpi mpi = Mpi::create(cam, 0.8, 9.5, 4);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> uni(0.01f, 1.f);
+    for (auto& plane : mpi.planes)
+        for (float& x : plane) x = uni(rng);
+    const std::string path = (std::filesystem::temp_directory_path() / "lh_mpi_m4.vdb").string();
+    VolumeSaveOptions options;
+    options.mantissaBits = 4;
+    saveVdb(path, nullptr, &mpi, options);
+    Mpi back = loadMpi(path);
+    ASSERT_EQ(back.planes.size(), mpi.planes.size());
+    int changed = 0;
+    for (std::size_t d = 0; d < mpi.planes.size(); ++d)
+        for (std::size_t i = 0; i < mpi.planes[d].size(); ++i) {
+            const float x = mpi.planes[d][i], y = back.planes[d][i];
+            ASSERT_EQ(y, roundToMantissaBits(x, 4)) << "plane " << d << " value " << i;
+            changed += y != x;
+        }
+    EXPECT_GT(changed, 0);
 }
 
 }  // namespace
