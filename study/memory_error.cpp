@@ -51,9 +51,12 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(
     };
     const std::string scratch = scratchDirectory(o.scratchDir);
     std::vector<MemoryErrorRow> rows;
-    const auto addRow = [&](const std::string& setting, double tau, const LightingVolume& v) {
+    // A row's setting, its size in memory and its sizes on disk (float, half and, when asked,
+    // rounded); returns the volume read back from the file a pruned row renders: the rounded
+    // one when asked, else the half one.
+    const auto describe = [&](MemoryErrorRow& row, const std::string& setting, double tau,
+                              const LightingVolume& v) {
         say(setting);
-        MemoryErrorRow row;
         row.setting = setting;
         row.tau = tau;
         row.activeVoxels = activeDensityVoxels(v);
@@ -61,12 +64,16 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(
         row.levels = int(v.levels.size());
         asStored(v, false, scratch, &row.diskBytesFloat);
         LightingVolume stored = asStored(v, true, scratch, &row.diskBytesHalf);
-        const bool rounded = o.mantissaBits > 0;
-        if (rounded) {
+        if (o.mantissaBits > 0) {
             row.mantissaBits = o.mantissaBits;
             stored = asStored(v, false, scratch, &row.diskBytesRounded, o.mantissaBits);
         }
-        const RenderVolume render(o.halfPrecision || rounded ? stored : v);
+        return stored;
+    };
+    const auto addRow = [&](const std::string& setting, double tau, const LightingVolume& v) {
+        MemoryErrorRow row;
+        const LightingVolume stored = describe(row, setting, tau, v);
+        const RenderVolume render(o.halfPrecision || o.mantissaBits > 0 ? stored : v);
         renderEnvmapsAt(render, points, o.width, o.height);  // warm caches before timing
         renderEnvmapsAt(render, points, o.width, o.height, &row.msPerEnvmap);
         const EnvmapSetError e = compareEnvmapSets(
@@ -81,19 +88,8 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(
     };
     // The unpruned row is measured in float: it is the volume as given.
     {
-        say("unpruned");
         MemoryErrorRow row;
-        row.setting = "unpruned";
-        row.tau = -1;
-        row.activeVoxels = activeDensityVoxels(volume);
-        row.memoryBytes = volume.memoryBytes();
-        row.levels = int(volume.levels.size());
-        asStored(volume, false, scratch, &row.diskBytesFloat);
-        asStored(volume, true, scratch, &row.diskBytesHalf);
-        if (o.mantissaBits > 0) {
-            row.mantissaBits = o.mantissaBits;
-            asStored(volume, false, scratch, &row.diskBytesRounded, o.mantissaBits);
-        }
+        describe(row, "unpruned", -1, volume);
         renderEnvmapsAt(unprunedRender, points, o.width, o.height);
         renderEnvmapsAt(unprunedRender, points, o.width, o.height, &row.msPerEnvmap);
         if (!gt.empty()) row.psnrGroundTruth = gtPsnr(unprunedRender);
@@ -112,10 +108,15 @@ std::vector<MemoryErrorRow> measureMemoryAgainstError(
 
 namespace {
 
+// The mantissa bits of the rounded files the rows measured (0: none were measured).
+int roundedBits(const std::vector<MemoryErrorRow>& rows) {
+    return rows.empty() ? 0 : rows.front().mantissaBits;
+}
+
 // Bytes (log) against PSNR vs the unpruned envmaps (linear, 100 = identical), in memory and
 // on disk, with the target (a tenth of dense storage) marked.
 std::string memorySvg(const std::vector<MemoryErrorRow>& rows, double denseBytes) {
-    const int bits = rows.empty() ? 0 : rows.front().mantissaBits;
+    const int bits = roundedBits(rows);
     PlotSeries memory{"in memory", "#d62728", {}, true, {}},
         disk{bits > 0 ? "on disk (Blosc, " + std::to_string(bits) + "-bit mantissas)"
                       : std::string("on disk (Blosc, half)"),
@@ -186,7 +187,7 @@ void writeMemoryErrorReport(const std::vector<MemoryErrorRow>& rows, const std::
     std::filesystem::create_directories(directory);
     std::ostringstream csv, md;
     const bool gt = !rows.empty() && rows.front().psnrGroundTruth >= 0;
-    const int bits = rows.empty() ? 0 : rows.front().mantissaBits;
+    const int bits = roundedBits(rows);
     csv << "setting,tau,levels,active_voxels,memory_bytes,disk_bytes_float,disk_bytes_half,"
            "fraction_of_dense,"
            "psnr_vs_unpruned_db,relative_rmse,ms_per_envmap,psnr_ground_truth_db,loss_db,"

@@ -1,7 +1,8 @@
 // Memory against error of a lighting volume ("storing only what the scene needs"): the
 // volume sparsified at several bounds (vdb/sparsity.h), each measured in memory, on disk (float,
-// half, and optionally floats rounded to fewer mantissa bits) and by its envmaps against the unpruned volume's, and against ground truth with a
-// data set; the storage target and the report of `lighthouse bench-sparsity`.
+// half, and optionally floats rounded to fewer mantissa bits) and by its envmaps against the
+// unpruned volume's, and against ground truth with a data set; the storage target and the
+// report of `lighthouse bench-sparsity`.
 #pragma once
 
 #include "render/ray_marcher.h"
