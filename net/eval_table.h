@@ -35,6 +35,10 @@ void addScores(MethodScores& scores, const MetricValues& values);
 std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::size_t scenes,
                               const std::string& data, const std::string& configName);
 
+// The headroom section (EvalOptions::headroom): `ours` and each of `rows` (ours with one part
+// of the truth put in) on PSNR, angle, irradiance error and radiance ratio over all pixels.
+std::string headroomTableMarkdown(const MethodScores& ours, const std::vector<MethodScores>& rows);
+
 // A one-row contact sheet, the strip of rows that `stackSheetStrips` stacks into the sheet
 // contactSheet() would have made of all rows at once.
 ImageRGB sheetStrip(const std::vector<ImageRGB>& row);

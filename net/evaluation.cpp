@@ -9,6 +9,7 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "image/resample.h"
+#include "image/truth_splice.h"
 #include "net/predictor.h"
 #include "net/training_data.h"
 #include "render/envmap.h"
@@ -68,9 +69,21 @@ bool hasSceneFiles(const std::vector<std::string>& dirs, std::ostream& progress)
     return true;
 }
 
+MetricValues metricValues(const ImageRGB& prediction, const ImageRGB& truth,
+                          const std::vector<std::uint8_t>& observed) {
+    const EnvmapMetrics m = compareEnvmaps(prediction, truth, &observed);
+    return {m.psnrAll,         m.angularAll,           m.psnrObserved,    m.angularObserved,
+            m.logLuminanceAll, m.logLuminanceObserved, m.irradianceError, m.radianceRatio,
+            m.psnrUnobserved,  m.displayBiasUnobserved};
+}
+
 }  // namespace
 
 EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
+    if (o.headroom && o.shard.active)
+        throw InputError(
+            "--headroom cannot be combined with --shard: run the headroom "
+            "evaluation in one process");
     std::vector<std::string> dirs = listExamples(o.data);
     if (o.maxScenes > 0 && int(dirs.size()) > o.maxScenes) dirs.resize(size_t(o.maxScenes));
     PredictorOptions po;
@@ -93,6 +106,11 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         report.methods.emplace_back();
         report.methods.back().name = name;
     }
+    if (o.headroom)
+        for (const TruthPart part : kTruthParts) {
+            report.headroom.emplace_back();
+            report.headroom.back().name = std::string("ours + ") + truthPartName(part);
+        }
     std::vector<std::vector<ImageRGB>> sheetRows;
     std::vector<std::string> sheetRowIds;  // example_envmap, for a shard's strips
     std::vector<std::size_t> sheetRowScenes;
@@ -144,15 +162,16 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
             if (oracle) predictions.push_back(renderEnvmap(*oracle, position, options));
             const std::string example = fs::path(dirs[s]).filename().string();
             for (size_t m = 0; m < predictions.size(); ++m) {
-                const EnvmapMetrics metrics = compareEnvmaps(predictions[m], gt, &ex.masks[e]);
-                const MetricValues values = {
-                    metrics.psnrAll,         metrics.angularAll,
-                    metrics.psnrObserved,    metrics.angularObserved,
-                    metrics.logLuminanceAll, metrics.logLuminanceObserved,
-                    metrics.irradianceError, metrics.radianceRatio,
-                    metrics.psnrUnobserved,  metrics.displayBiasUnobserved};
+                const MetricValues values = metricValues(predictions[m], gt, ex.masks[e]);
                 addScores(report.methods[m], values);
                 csv << evalCsvRow(example, e, report.methods[m].name, values, o.shard.active);
+            }
+            for (size_t k = 0; k < report.headroom.size(); ++k) {
+                const ImageRGB spliced =
+                    spliceTruth(predictions[0], gt, kTruthParts[k], ex.masks[e]);
+                const MetricValues values = metricValues(spliced, gt, ex.masks[e]);
+                addScores(report.headroom[k], values);
+                csv << evalCsvRow(example, e, report.headroom[k].name, values, false);
             }
             if (sheetRows.size() < kEvalSheetRows) {
                 std::vector<ImageRGB> row = {gt};
@@ -170,6 +189,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     }
 
     report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
+    if (o.headroom) report.markdown += headroomTableMarkdown(report.methods[0], report.headroom);
     if (o.shard.active) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the
         // record that the merge reads.

@@ -34,6 +34,10 @@ struct EvalOptions {
     std::string device = "cpu";
     int threads = 0;
     float pruneAlpha = -1;  // predict's --prune-alpha; negative: the model's (as predict's)
+    // Also score "ours" with one part of the truth put in (image/truth_splice.h): how much a
+    // perfect MPI, a perfect completion or perfect lamps and windows alone would gain.
+    // Not with shards.
+    bool headroom = false;
     // With shard.active: only scene i with shard.owns(i), into out/metrics.shard-K-of-N.csv,
     // out/sheet.shard-K-of-N/ and out/shard-K-of-N.json; mergeEvalShards (net/eval_table.h)
     // writes table.md, metrics.csv and contact_sheet.png from a complete set.
@@ -49,7 +53,8 @@ struct MethodScores {
 
 struct EvalReport {
     std::vector<MethodScores> methods;
-    std::string markdown;  // the table
+    std::vector<MethodScores> headroom;  // with options.headroom: one per TruthPart
+    std::string markdown;                // the table
 };
 
 EvalReport evaluate(const EvalOptions& options, std::ostream& progress);

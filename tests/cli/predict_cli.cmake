@@ -155,6 +155,12 @@ lighthouse_cli_error(eval_negative_prune_alpha
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS eval --data ${LH_PAIR} --prune-alpha -0.5 -o eval_negative_prune)
 
+lighthouse_cli_error(eval_headroom_with_shard
+  EXPECT "--headroom cannot be combined with --shard"
+  ABSENT eval_headroom_shard
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS eval --data ${LH_PAIR} --headroom --shard 0/2 -o eval_headroom_shard)
+
 # `lighthouse average-models`: the bundled model averaged with itself is written (half), and
 # what would lose a model is refused: one model only, or an output that is one of the inputs.
 if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)

@@ -1,0 +1,52 @@
+#include "image/truth_splice.h"
+
+#include "core/errors.h"
+#include "image/luminance.h"
+
+#include <string>
+
+namespace lh {
+
+const char* truthPartName(TruthPart part) {
+    switch (part) {
+        case TruthPart::Observed:
+            return "true observed pixels";
+        case TruthPart::Unobserved:
+            return "true unobserved pixels";
+        case TruthPart::LampsAndWindows:
+            return "true lamps and windows (luminance > 1)";
+    }
+    return "?";
+}
+
+ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPart part,
+                     const std::vector<std::uint8_t>& observed) {
+    const std::size_t pixels = std::size_t(truth.width) * std::size_t(truth.height);
+    if (prediction.width != truth.width || prediction.height != truth.height)
+        throw InputError("prediction is " + std::to_string(prediction.width) + "x" +
+                         std::to_string(prediction.height) + " but the truth is " +
+                         std::to_string(truth.width) + "x" + std::to_string(truth.height));
+    if (observed.size() != pixels)
+        throw InputError("observed mask has " + std::to_string(observed.size()) +
+                         " pixels, the envmap " + std::to_string(pixels));
+    ImageRGB out = prediction;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const float* t = &truth.pixels[3 * i];
+        bool take = false;
+        switch (part) {
+            case TruthPart::Observed:
+                take = observed[i] != 0;
+                break;
+            case TruthPart::Unobserved:
+                take = observed[i] == 0;
+                break;
+            case TruthPart::LampsAndWindows:
+                take = rec709Luminance(t) > kLampLuminance;
+                break;
+        }
+        if (take) std::copy(t, t + 3, &out.pixels[3 * i]);
+    }
+    return out;
+}
+
+}  // namespace lh

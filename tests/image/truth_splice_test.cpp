@@ -1,0 +1,58 @@
+#include "image/truth_splice.h"
+
+#include "core/errors.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace lh {
+namespace {
+
+// A 4x1 prediction of grey 0.1 against a truth whose pixels are 0.5, 0.5, 3 (a lamp) and 0.2;
+// the first two pixels are observed.
+struct Case {
+    ImageRGB prediction{4, 1}, truth{4, 1};
+    std::vector<std::uint8_t> observed{1, 1, 0, 0};
+    Case() {
+        const float values[4] = {0.5f, 0.5f, 3.0f, 0.2f};
+        for (int x = 0; x < 4; ++x)
+            for (int c = 0; c < 3; ++c) {
+                prediction.at(x, 0)[c] = 0.1f;
+                truth.at(x, 0)[c] = values[x];
+            }
+    }
+    // The red channel of each pixel of `image`.
+    static std::vector<float> reds(const ImageRGB& image) {
+        std::vector<float> out;
+        for (int x = 0; x < image.width; ++x) out.push_back(image.at(x, 0)[0]);
+        return out;
+    }
+};
+
+TEST(TruthSplice, EachPartTakesItsPixelsFromTheTruthAndKeepsTheRest) {
+    const Case k;
+    EXPECT_EQ(Case::reds(spliceTruth(k.prediction, k.truth, TruthPart::Observed, k.observed)),
+              (std::vector<float>{0.5f, 0.5f, 0.1f, 0.1f}));
+    EXPECT_EQ(Case::reds(spliceTruth(k.prediction, k.truth, TruthPart::Unobserved, k.observed)),
+              (std::vector<float>{0.1f, 0.1f, 3.0f, 0.2f}));
+    EXPECT_EQ(
+        Case::reds(spliceTruth(k.prediction, k.truth, TruthPart::LampsAndWindows, k.observed)),
+        (std::vector<float>{0.1f, 0.1f, 3.0f, 0.1f}))
+        << "only the pixel whose true luminance is above 1";
+}
+
+TEST(TruthSplice, MismatchedSizesAreAClearError) {
+    const Case k;
+    EXPECT_THROW(spliceTruth(ImageRGB(2, 1), k.truth, TruthPart::Observed, k.observed), InputError);
+    EXPECT_THROW(spliceTruth(k.prediction, k.truth, TruthPart::Observed, {1, 0}), InputError);
+}
+
+TEST(TruthSplice, EveryPartHasItsOwnName) {
+    EXPECT_STRNE(truthPartName(TruthPart::Observed), truthPartName(TruthPart::Unobserved));
+    EXPECT_STRNE(truthPartName(TruthPart::Unobserved), truthPartName(TruthPart::LampsAndWindows));
+}
+
+}  // namespace
+}  // namespace lh

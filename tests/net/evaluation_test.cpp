@@ -1,0 +1,67 @@
+// `lighthouse eval`'s headroom rows on a tiny data set and an untrained model: each row is
+// ours with one part of the truth put in, so the part put in scores perfectly and the rest
+// scores as ours.
+#include "net/evaluation.h"
+#include "core/errors.h"
+#include "net/lighthouse_net.h"
+#include "tests/net/tiny_training_set.h"
+
+#include "tests/support/temp_path.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace lh::net {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
+    const std::string data = test::uniqueTempPath("lighthouse_eval_test_data");
+    const std::string model = test::uniqueTempPath("lighthouse_eval_test.pt");
+    const std::string out = test::uniqueTempPath("lighthouse_eval_test_out");
+    test::writeTinyTrainingSet(data);
+    torch::manual_seed(7);
+    LighthouseNet untrained(test::tinyHdrConfig());
+    saveModel(untrained, model);
+
+    EvalOptions o;
+    o.data = data;
+    o.model = model;
+    o.out = out;
+    o.oracle = false;
+    o.threads = 1;
+    o.headroom = true;
+    std::ostringstream progress;
+    const EvalReport report = evaluate(o, progress);
+
+    ASSERT_EQ(report.headroom.size(), 3u);
+    const MethodScores& ours = report.methods[0];
+    const MethodScores &observed = report.headroom[0], &unobserved = report.headroom[1];
+    ASSERT_EQ(observed.psnrAll.size(), ours.psnrAll.size());
+    int withBothParts = 0;
+    for (size_t i = 0; i < ours.psnrAll.size(); ++i) {
+        if (std::isnan(ours.psnrObserved[i]) || std::isnan(ours.psnrUnobserved[i])) continue;
+        ++withBothParts;
+        EXPECT_EQ(observed.psnrObserved[i], INFINITY) << "the true observed pixels are perfect";
+        EXPECT_EQ(observed.psnrUnobserved[i], ours.psnrUnobserved[i]) << "the rest is ours";
+        EXPECT_EQ(unobserved.psnrUnobserved[i], INFINITY);
+        EXPECT_EQ(unobserved.psnrObserved[i], ours.psnrObserved[i]);
+        EXPECT_GT(observed.psnrAll[i], ours.psnrAll[i]);
+    }
+    EXPECT_GT(withBothParts, 0) << "no envmap with observed and unobserved pixels to test on";
+    EXPECT_NE(report.markdown.find("| ours + true lamps and windows"), std::string::npos)
+        << report.markdown;
+
+    o.shard = Shard{0, 2, true};
+    EXPECT_THROW(evaluate(o, progress), InputError) << "headroom rows are not sharded";
+    fs::remove_all(data);
+    fs::remove(model);
+    fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace lh::net
