@@ -93,6 +93,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "empty rooms; the model records it and predict prunes there by default; "
                     "0: off")
         ->capture_default_str();
+    cmd->add_option("--direct-adversarial-weight", o->directAdversarialWeight,
+                    "Weight of the paper's PatchGAN loss on the envmaps under direct supervision, "
+                    "from the first step: it asks for envmaps that look like rooms (lamps and "
+                    "windows) where the per-pixel losses settle for a blur; 0: off")
+        ->capture_default_str();
     cmd->add_option("--alpha-binary-weight", o->alphaBinaryWeight,
                     "Weight of the prior towards empty or opaque voxels (the mean of alpha (1 - "
                     "alpha)); with --prune-alpha it asks for empty rooms and opaque walls, which "

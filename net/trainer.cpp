@@ -63,6 +63,12 @@ void TrainOptions::validate() const {
         throw InputError("--alpha-binary-weight must be in [0, 1000]");
     if (!(closureWeight >= 0 && closureWeight <= 100))
         throw InputError("--closure-weight must be in [0, 100]");
+    if (!(directAdversarialWeight >= 0 && directAdversarialWeight <= 10))
+        throw InputError("--direct-adversarial-weight must be in [0, 10]");
+    if (directAdversarialWeight > 0 && supervision != "direct")
+        throw InputError(
+            "--direct-adversarial-weight needs --supervision direct (the paper's "
+            "supervision has its own adversarial stage)");
     if (batch % distributed.worldSize != 0)
         throw InputError(
             "--batch " + std::to_string(batch) + " must be a multiple of the world size " +
@@ -92,9 +98,10 @@ constexpr const char* kLogHeader =
     "it_per_s,val_psnr_db,val_angular_deg,loss_voxel,loss_depth,s_data,s_forward,s_backward,"
     "s_allreduce";
 
-// Direct supervision runs every network from the start and has no adversarial stage.
-int stageAt(int iteration, int total, bool direct) {
-    if (direct) return 2;
+// Direct supervision runs every network from the start, with the adversarial term (stage 3)
+// from the start too where it has a weight.
+int stageAt(int iteration, int total, bool direct, bool directAdversarial) {
+    if (direct) return directAdversarial ? 3 : 2;
     if (iteration >= int(kStage3Start * total)) return 3;
     if (iteration >= int(kStage2Start * total)) return 2;
     return 1;
@@ -537,6 +544,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                  << " pruned (straight-through)";
     if (o.alphaBinaryWeight > 0)
         progress << "; cubes also " << o.alphaBinaryWeight << " x alpha (1 - alpha)";
+    if (o.directAdversarialWeight > 0)
+        progress << "; envmaps also " << o.directAdversarialWeight
+                 << " x the PatchGAN generator loss, from the first step";
     if (o.closureWeight > 0)
         progress << "; envmaps also " << o.closureWeight
                  << " x the transmittance left behind the volume (closed rooms)";
@@ -555,7 +565,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         o.stopAfter > 0 ? std::min(o.iterations, firstIteration + o.stopAfter) : o.iterations;
     for (; s.iteration < sittingEnd; ++s.iteration) {
         const int it = s.iteration;
-        const int stage = stageAt(it, o.iterations, direct);
+        const int stage = stageAt(it, o.iterations, direct, o.directAdversarialWeight > 0);
         const double lr =
             it >= int(kLowLearningRateStart * o.iterations) ? o.learningRate / 10 : o.learningRate;
         setLearningRate(*s.optimizer, lr);
@@ -636,7 +646,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                                                  "the discriminator's all-reduce");
                     s.discriminatorOptimizer->step();
                     advLoss = generatorHingeLoss(s.discriminator(srgbEncodeTensor(env)));
-                    loss = loss + kAdversarialWeight * advLoss;
+                    loss =
+                        loss + (direct ? o.directAdversarialWeight : kAdversarialWeight) * advLoss;
                 }
             }
             window.secondsForward += secondsSince(clock);
@@ -702,10 +713,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             progress << "train: it " << done << "/" << o.iterations << "  stage " << stage
                      << "  loss " << std::fixed << std::setprecision(4) << row.total << " (view "
                      << row.view << ", envmap " << row.envmap;
-            if (direct)
-                progress << ", voxel " << row.voxel << ", depth " << row.depth;
-            else
-                progress << ", adv " << row.adversarial;
+            if (direct) progress << ", voxel " << row.voxel << ", depth " << row.depth;
+            if (!direct || stage >= 3) progress << ", adv " << row.adversarial;
+            if (stage >= 3) progress << ", discriminator " << row.discriminator;
             progress << ")  " << std::setprecision(2) << row.itPerSecond << " it/s (data "
                      << row.secondsData << " s, forward " << row.secondsForward << " s, backward "
                      << row.secondsBackward << " s";

@@ -99,6 +99,11 @@ struct TrainOptions {
     // envmap ray has left behind the (pruned) volume. The training rooms are closed; fog lets
     // rays leave through the walls, dark and slow to render. 0: off.
     double closureWeight = 0.0;
+    // Weight of the paper's PatchGAN loss under direct supervision, from the first step (the
+    // paper's own supervision adds it at 0.1 in its last stage). The per-pixel losses ask for
+    // the mean of what the unseen part of a room may hold, a lampless blur; the discriminator
+    // asks for envmaps that look like rooms, lamps and windows included. 0: off.
+    double directAdversarialWeight = 0.0;
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

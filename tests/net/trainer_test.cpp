@@ -296,6 +296,59 @@ TEST_F(TrainerTest, PaperModeTrainsWithoutThreeDimensionalGroundTruth) {
     removeOutputs(o);
 }
 
+TEST_F(TrainerTest, TheDirectAdversarialWeightAddsThePatchGanFromTheFirstStep) {
+    // Direct supervision with a PatchGAN weight: every iteration is in stage 3, with a
+    // discriminator loss and a generator loss logged, and the weights differ from the run
+    // without it. Without it, direct supervision stays in stage 2 with no adversarial loss.
+    std::ostringstream log;
+    const auto withEnvmapsForThePatchGan = [](TrainOptions& o) {
+        o.configOverride->trainEnvWidth = 64;  // the discriminator needs at least 32 rows
+        o.configOverride->trainEnvHeight = 32;
+    };
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_direct_gan", 0.0, 1.0,
+                  [&](TrainOptions& o, double w) {
+                      withEnvmapsForThePatchGan(o);
+                      o.directAdversarialWeight = w;
+                  },
+                  log),
+              1e-6)
+        << "the adversarial weight changed nothing";
+    EXPECT_NE(log.str().find("1 x the PatchGAN generator loss"), std::string::npos) << log.str();
+    EXPECT_NE(log.str().find(", discriminator "), std::string::npos)
+        << "the progress lines show the adversarial losses: " << log.str();
+
+    TrainOptions o = options("lighthouse_trainer_direct_gan_log");
+    withEnvmapsForThePatchGan(o);
+    o.iterations = 2;
+    o.directAdversarialWeight = 0.5;
+    train(o, log);
+    std::istringstream rows(readText(o.out + ".csv"));
+    std::string line;
+    std::getline(rows, line);
+    int lines = 0;
+    while (std::getline(rows, line)) {
+        if (line.empty()) continue;
+        ++lines;
+        std::vector<std::string> cells;
+        std::istringstream fields(line);
+        for (std::string f; std::getline(fields, f, ',');) cells.push_back(f);
+        ASSERT_GE(cells.size(), 7u) << line;
+        EXPECT_EQ(cells[1], "3") << "stage 3 from the first step: " << line;
+        EXPECT_NE(std::stod(cells[5]), 0.0) << "a generator loss: " << line;
+        EXPECT_GT(std::stod(cells[6]), 0.0) << "a discriminator loss: " << line;
+    }
+    EXPECT_EQ(lines, 2);
+    removeOutputs(o);
+
+    TrainOptions bad = options("lighthouse_trainer_direct_gan_bad");
+    bad.directAdversarialWeight = -1.0;
+    EXPECT_THROW(bad.validate(), InputError);
+    bad.directAdversarialWeight = 0.5;
+    bad.supervision = "paper";
+    EXPECT_THROW(bad.validate(), InputError) << "the paper's supervision has its own stage";
+}
+
 TEST_F(TrainerTest, InitPartialStartsFromTheSharedParametersOfAnotherConfiguration) {
     // A model of twice the completion width shares only the MPI network with this one.
     TrainOptions source = options("lighthouse_trainer_partial_source");
