@@ -33,8 +33,8 @@ void addEvalCommand(CLI::App& app, const int& threads) {
         ->check(CLI::Range(0.0f, 1.0f));
     cmd->add_flag("--headroom", o->headroom,
                   "Also score ours with one part of the truth put in (the observed pixels, the "
-                  "unobserved ones, the lamps and windows): what a perfect job on each part "
-                  "alone would gain; not with --shard");
+                  "unobserved ones, the lamps and windows, the observed lamps and windows): what "
+                  "a perfect job on each part alone would gain; not with --shard");
     auto shard = std::make_shared<std::string>();
     cmd->add_option(
         "--shard", *shard,

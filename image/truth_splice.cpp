@@ -15,6 +15,8 @@ const char* truthPartName(TruthPart part) {
             return "true unobserved pixels";
         case TruthPart::LampsAndWindows:
             return "true lamps and windows (luminance > 1)";
+        case TruthPart::ObservedLampsAndWindows:
+            return "true observed lamps and windows";
     }
     return "?";
 }
@@ -42,6 +44,9 @@ ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPar
                 break;
             case TruthPart::LampsAndWindows:
                 take = rec709Luminance(t) > kLampLuminance;
+                break;
+            case TruthPart::ObservedLampsAndWindows:
+                take = observed[i] != 0 && rec709Luminance(t) > kLampLuminance;
                 break;
         }
         if (take) std::copy(t, t + 3, &out.pixels[3 * i]);

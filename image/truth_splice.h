@@ -1,8 +1,9 @@
 // Headroom of a predictor: its envmap with one part of the truth put in, so that the metrics
 // say how much a perfect job on that part alone would gain. `lighthouse eval --headroom` scores
-// three parts: the observed pixels (what a perfect MPI would give), the unobserved ones (a
-// perfect completion), and the lamps and windows (the pixels whose true luminance is above 1,
-// where photos clip and which hold most of a room's light).
+// four parts: the observed pixels (what a perfect MPI would give), the unobserved ones (a
+// perfect completion), the lamps and windows (the pixels whose true luminance is above 1,
+// where photos clip and which hold most of a room's light), and the observed lamps and windows
+// alone (how bright the MPI should make what the photo clipped).
 #pragma once
 
 #include "image/image.h"
@@ -12,11 +13,12 @@
 
 namespace lh {
 
-enum class TruthPart { Observed, Unobserved, LampsAndWindows };
+enum class TruthPart { Observed, Unobserved, LampsAndWindows, ObservedLampsAndWindows };
 
 // Every part, in the order the tables list them.
 constexpr TruthPart kTruthParts[] = {TruthPart::Observed, TruthPart::Unobserved,
-                                     TruthPart::LampsAndWindows};
+                                     TruthPart::LampsAndWindows,
+                                     TruthPart::ObservedLampsAndWindows};
 
 // A line for a table: "true observed pixels", ...
 const char* truthPartName(TruthPart part);

@@ -10,13 +10,13 @@
 namespace lh {
 namespace {
 
-// A 4x1 prediction of grey 0.1 against a truth whose pixels are 0.5, 0.5, 3 (a lamp) and 0.2;
-// the first two pixels are observed.
+// A 4x1 prediction of grey 0.1 against a truth whose pixels are 0.5, 2 (a window), 3 (a lamp)
+// and 0.2; the first two pixels are observed.
 struct Case {
     ImageRGB prediction{4, 1}, truth{4, 1};
     std::vector<std::uint8_t> observed{1, 1, 0, 0};
     Case() {
-        const float values[4] = {0.5f, 0.5f, 3.0f, 0.2f};
+        const float values[4] = {0.5f, 2.0f, 3.0f, 0.2f};
         for (int x = 0; x < 4; ++x)
             for (int c = 0; c < 3; ++c) {
                 prediction.at(x, 0)[c] = 0.1f;
@@ -34,13 +34,17 @@ struct Case {
 TEST(TruthSplice, EachPartTakesItsPixelsFromTheTruthAndKeepsTheRest) {
     const Case k;
     EXPECT_EQ(Case::reds(spliceTruth(k.prediction, k.truth, TruthPart::Observed, k.observed)),
-              (std::vector<float>{0.5f, 0.5f, 0.1f, 0.1f}));
+              (std::vector<float>{0.5f, 2.0f, 0.1f, 0.1f}));
     EXPECT_EQ(Case::reds(spliceTruth(k.prediction, k.truth, TruthPart::Unobserved, k.observed)),
               (std::vector<float>{0.1f, 0.1f, 3.0f, 0.2f}));
     EXPECT_EQ(
         Case::reds(spliceTruth(k.prediction, k.truth, TruthPart::LampsAndWindows, k.observed)),
-        (std::vector<float>{0.1f, 0.1f, 3.0f, 0.1f}))
-        << "only the pixel whose true luminance is above 1";
+        (std::vector<float>{0.1f, 2.0f, 3.0f, 0.1f}))
+        << "only the pixels whose true luminance is above 1";
+    EXPECT_EQ(Case::reds(spliceTruth(k.prediction, k.truth, TruthPart::ObservedLampsAndWindows,
+                                     k.observed)),
+              (std::vector<float>{0.1f, 2.0f, 0.1f, 0.1f}))
+        << "only the observed pixel whose true luminance is above 1";
 }
 
 TEST(TruthSplice, MismatchedSizesAreAClearError) {
@@ -52,6 +56,8 @@ TEST(TruthSplice, MismatchedSizesAreAClearError) {
 TEST(TruthSplice, EveryPartHasItsOwnName) {
     EXPECT_STRNE(truthPartName(TruthPart::Observed), truthPartName(TruthPart::Unobserved));
     EXPECT_STRNE(truthPartName(TruthPart::Unobserved), truthPartName(TruthPart::LampsAndWindows));
+    EXPECT_STRNE(truthPartName(TruthPart::LampsAndWindows),
+                 truthPartName(TruthPart::ObservedLampsAndWindows));
 }
 
 }  // namespace

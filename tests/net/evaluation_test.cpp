@@ -38,7 +38,7 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     std::ostringstream progress;
     const EvalReport report = evaluate(o, progress);
 
-    ASSERT_EQ(report.headroom.size(), 3u);
+    ASSERT_EQ(report.headroom.size(), 4u);
     const MethodScores& ours = report.methods[0];
     const MethodScores &observed = report.headroom[0], &unobserved = report.headroom[1];
     ASSERT_EQ(observed.psnrAll.size(), ours.psnrAll.size());
