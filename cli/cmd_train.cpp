@@ -98,6 +98,10 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "from the first step: it asks for envmaps that look like rooms (lamps and "
                     "windows) where the per-pixel losses settle for a blur; 0: off")
         ->capture_default_str();
+    cmd->add_option("--adversarial-input", o->adversarialInput,
+                    "What the PatchGAN discriminator sees of an envmap: srgb (clamped at 1, the "
+                    "paper's) or log (ln(1 + radiance): a lamp is brighter than a white wall)")
+        ->capture_default_str();
     cmd->add_option("--alpha-binary-weight", o->alphaBinaryWeight,
                     "Weight of the prior towards empty or opaque voxels (the mean of alpha (1 - "
                     "alpha)); with --prune-alpha it asks for empty rooms and opaque walls, which "

@@ -114,6 +114,10 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& 
         .mean();
 }
 
+torch::Tensor logRadianceEncode(const torch::Tensor& linear) {
+    return torch::log1p(linear.clamp_min(0.0)) / std::log1p(kAdversarialLogPeak);
+}
+
 torch::Tensor axisIrradianceTensor(const torch::Tensor& envmaps) {
     const int64_t n = envmaps.size(0), h = envmaps.size(2), w = envmaps.size(3);
     // [P, 6]: max(0, n . d) dOmega, the metric's own table (image/irradiance_weights.h).

@@ -23,6 +23,13 @@ torch::Tensor squaredImageLoss(const torch::Tensor& predictedLinear,
 // radiance. Unlike imageLoss it sees how bright a lamp or window is (imageLoss clamps at 1).
 torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
 
+// What the PatchGAN discriminator sees of an HDR envmap under `train --adversarial-input log`:
+// ln(1 + radiance) / ln(1 + 100), so 0 is black, 1 a radiance of 100 and a lamp of 1000 is 1.5.
+// sRGB (srgbEncodeTensor) clamps at 1, where a white wall and a lamp look alike; this keeps
+// their difference, so the discriminator can ask for lamps as bright as real ones.
+constexpr double kAdversarialLogPeak = 100.0;
+torch::Tensor logRadianceEncode(const torch::Tensor& linear);
+
 // Diffuse-irradiance loss: the cosine-weighted integrals of linear radiance over the six axis
 // normals (the irradiance a diffuse surface facing +-x, +-y, +-z receives, as the metric of
 // docs/metrics.md), their mean relative error |E_pred - E_gt| / E_gt (E_gt floored at 1e-3 of

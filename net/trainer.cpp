@@ -65,6 +65,9 @@ void TrainOptions::validate() const {
         throw InputError("--closure-weight must be in [0, 100]");
     if (!(directAdversarialWeight >= 0 && directAdversarialWeight <= 10))
         throw InputError("--direct-adversarial-weight must be in [0, 10]");
+    if (adversarialInput != "srgb" && adversarialInput != "log")
+        throw InputError("--adversarial-input must be 'srgb' or 'log', got '" + adversarialInput +
+                         "'");
     if (directAdversarialWeight > 0 && supervision != "direct")
         throw InputError(
             "--direct-adversarial-weight needs --supervision direct (the paper's "
@@ -547,10 +550,15 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.directAdversarialWeight > 0)
         progress << "; envmaps also " << o.directAdversarialWeight
                  << " x the PatchGAN generator loss, from the first step";
+    if (o.adversarialInput == "log")
+        progress << "; the discriminator sees ln(1 + radiance), not clamped sRGB";
     if (o.closureWeight > 0)
         progress << "; envmaps also " << o.closureWeight
                  << " x the transmittance left behind the volume (closed rooms)";
     progress << "\n";
+    const auto seenByDiscriminator = [&](const torch::Tensor& envmap) {
+        return o.adversarialInput == "log" ? logRadianceEncode(envmap) : srgbEncodeTensor(envmap);
+    };
     const auto lossOf = [&](const torch::Tensor& predicted, const torch::Tensor& target) {
         return vgg ? (*vgg)(predicted, target) : imageLoss(predicted, target);
     };
@@ -637,15 +645,15 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                     // the mean of the ranks' gradients.
                     s.discriminatorOptimizer->zero_grad();
                     discLoss =
-                        discriminatorHingeLoss(s.discriminator(srgbEncodeTensor(gt)),
-                                               s.discriminator(srgbEncodeTensor(env.detach())));
+                        discriminatorHingeLoss(s.discriminator(seenByDiscriminator(gt)),
+                                               s.discriminator(seenByDiscriminator(env.detach())));
                     (world > 1 ? discLoss / world : discLoss).backward();
                     zeroNonFiniteGradients(s.discriminator->parameters());
                     if (comm)
                         comm->allReduceGradients(s.discriminator->parameters(),
                                                  "the discriminator's all-reduce");
                     s.discriminatorOptimizer->step();
-                    advLoss = generatorHingeLoss(s.discriminator(srgbEncodeTensor(env)));
+                    advLoss = generatorHingeLoss(s.discriminator(seenByDiscriminator(env)));
                     loss =
                         loss + (direct ? o.directAdversarialWeight : kAdversarialWeight) * advLoss;
                 }

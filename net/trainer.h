@@ -104,6 +104,10 @@ struct TrainOptions {
     // the mean of what the unseen part of a room may hold, a lampless blur; the discriminator
     // asks for envmaps that look like rooms, lamps and windows included. 0: off.
     double directAdversarialWeight = 0.0;
+    // What the discriminator sees of an envmap: "srgb" (the paper's: sRGB, clamped at 1) or
+    // "log" (net/losses.h logRadianceEncode: ln(1 + radiance), which tells a lamp from a
+    // white wall).
+    std::string adversarialInput = "srgb";
     // World size > 1: data-parallel training (net/distributed.h). Rank R trains examples
     // [R, R + 1) * batch / worldSize of every global batch; gradients are summed over ranks
     // before each step; rank 0 alone writes the model, checkpoint, log and plot; every rank

@@ -59,6 +59,19 @@ TEST(Losses, HdrImageLossIsZeroOnIdenticalInputsAndSeesBrightness) {
     EXPECT_NEAR(hdrImageLoss(dim, a).item<double>(), std::log(51.0) - std::log(2.0), 1e-5);
 }
 
+TEST(Losses, LogRadianceEncodingTellsALampFromAWhiteWall) {
+    const auto radiance = torch::tensor({0.0, 1.0, 100.0, 1000.0, -1.0});
+    const auto seen = logRadianceEncode(radiance);
+    EXPECT_NEAR(seen[0].item<double>(), 0.0, 1e-7);
+    EXPECT_NEAR(seen[1].item<double>(), std::log(2.0) / std::log(101.0), 1e-6);
+    EXPECT_NEAR(seen[2].item<double>(), 1.0, 1e-6);
+    EXPECT_NEAR(seen[3].item<double>(), std::log(1001.0) / std::log(101.0), 1e-6);
+    EXPECT_NEAR(seen[4].item<double>(), 0.0, 1e-7) << "negative radiance is black";
+    // Clamped sRGB sees a white wall (1) and a lamp (100) alike.
+    const auto srgb = srgbEncodeTensor(radiance);
+    EXPECT_NEAR(srgb[1].item<double>(), srgb[2].item<double>(), 1e-6);
+}
+
 TEST(Losses, SquaredImageLossIsWhatPsnrScores) {
     // Zero on identical images, 1 between black and white (clamped: a lamp of 50 is white),
     // and on any pair 10^(-PSNR / 10) of image/metrics.h's PSNR.

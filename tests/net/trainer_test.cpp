@@ -341,7 +341,23 @@ TEST_F(TrainerTest, TheDirectAdversarialWeightAddsThePatchGanFromTheFirstStep) {
     EXPECT_EQ(lines, 2);
     removeOutputs(o);
 
+    // What the discriminator sees changes what it asks for.
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_direct_gan_log", 0.0, 1.0,
+                  [&](TrainOptions& o, double log) {
+                      withEnvmapsForThePatchGan(o);
+                      o.directAdversarialWeight = 1.0;
+                      o.adversarialInput = log > 0 ? "log" : "srgb";
+                  },
+                  log),
+              1e-6)
+        << "the discriminator's input changed nothing";
+    EXPECT_NE(log.str().find("the discriminator sees ln(1 + radiance)"), std::string::npos);
+
     TrainOptions bad = options("lighthouse_trainer_direct_gan_bad");
+    bad.adversarialInput = "hdr";
+    EXPECT_THROW(bad.validate(), InputError);
+    bad.adversarialInput = "srgb";
     bad.directAdversarialWeight = -1.0;
     EXPECT_THROW(bad.validate(), InputError);
     bad.directAdversarialWeight = 0.5;
