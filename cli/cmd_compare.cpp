@@ -181,10 +181,7 @@ void writeCsv(AtomicOutput& out, const std::vector<EnvmapPair>& pairs,
         for (std::size_t i = 0; i < pairs.size(); ++i) {
             const EnvmapMetrics& m = metrics[i];
             file << csvField(pairs[i].relative);
-            for (double v : {m.psnrAll, m.angularAll, m.psnrObserved, m.angularObserved,
-                             m.logLuminanceAll, m.logLuminanceObserved, m.irradianceError,
-                             m.radianceRatio, m.psnrUnobserved, m.displayBiasUnobserved})
-                file << "," << formatNumber("%.8g", v);
+            for (double v : metricColumns(m)) file << "," << formatNumber("%.8g", v);
             file << "\n";
         }
         file.close();

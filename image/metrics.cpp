@@ -198,6 +198,12 @@ double meanRadianceRatio(const ImageRGB& pred, const ImageRGB& gt) {
     return meanLuminance(pred) / truth;
 }
 
+std::array<double, kEnvmapMetricColumns> metricColumns(const EnvmapMetrics& m) {
+    return {m.psnrAll,         m.angularAll,           m.psnrObserved,    m.angularObserved,
+            m.logLuminanceAll, m.logLuminanceObserved, m.irradianceError, m.radianceRatio,
+            m.psnrUnobserved,  m.displayBiasUnobserved};
+}
+
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
                              const std::vector<std::uint8_t>* mask) {
     EnvmapMetrics m{psnr(pred, gt),

@@ -12,6 +12,8 @@
 
 #include "image/image.h"
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -95,6 +97,12 @@ struct EnvmapMetrics {
 
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
                              const std::vector<std::uint8_t>* mask = nullptr);
+
+// The numbers of `m` in the column order of `compare --csv` and eval's metrics.csv: PSNR all,
+// angular all, PSNR observed, angular observed, log-lum RMSE all, log-lum RMSE observed,
+// irradiance error, radiance ratio, PSNR unobserved, display bias unobserved.
+constexpr std::size_t kEnvmapMetricColumns = 10;
+std::array<double, kEnvmapMetricColumns> metricColumns(const EnvmapMetrics& m);
 
 // Reads an observed-pixel mask (a PNG, or any image readImage reads): a pixel is observed
 // when any channel is nonzero. Throws FileError if unreadable, InputError unless it is

@@ -3,6 +3,7 @@
 // into the files one run writes: metrics.csv, table.md and contact_sheet.png, the same bytes.
 #pragma once
 
+#include "image/metrics.h"
 #include "net/evaluation.h"
 
 #include <array>
@@ -15,10 +16,8 @@ struct ImageRGB;
 
 namespace lh::net {
 
-// Columns of metrics.csv after example, envmap and method, in order: PSNR all, angular all,
-// PSNR observed, angular observed, log-lum RMSE all, log-lum RMSE observed, irradiance error,
-// radiance ratio, PSNR unobserved, display bias unobserved.
-using MetricValues = std::array<double, 10>;
+// Columns of metrics.csv after example, envmap and method: image/metrics.h metricColumns.
+using MetricValues = std::array<double, kEnvmapMetricColumns>;
 
 // Contact sheet: rows of ground truth | predictions, 90 pixels high, the first 12 envmaps.
 constexpr int kEvalSheetTileHeight = 90;

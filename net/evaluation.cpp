@@ -69,14 +69,6 @@ bool hasSceneFiles(const std::vector<std::string>& dirs, std::ostream& progress)
     return true;
 }
 
-MetricValues metricValues(const ImageRGB& prediction, const ImageRGB& truth,
-                          const std::vector<std::uint8_t>& observed) {
-    const EnvmapMetrics m = compareEnvmaps(prediction, truth, &observed);
-    return {m.psnrAll,         m.angularAll,           m.psnrObserved,    m.angularObserved,
-            m.logLuminanceAll, m.logLuminanceObserved, m.irradianceError, m.radianceRatio,
-            m.psnrUnobserved,  m.displayBiasUnobserved};
-}
-
 }  // namespace
 
 EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
@@ -162,14 +154,16 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
             if (oracle) predictions.push_back(renderEnvmap(*oracle, position, options));
             const std::string example = fs::path(dirs[s]).filename().string();
             for (size_t m = 0; m < predictions.size(); ++m) {
-                const MetricValues values = metricValues(predictions[m], gt, ex.masks[e]);
+                const MetricValues values =
+                    metricColumns(compareEnvmaps(predictions[m], gt, &ex.masks[e]));
                 addScores(report.methods[m], values);
                 csv << evalCsvRow(example, e, report.methods[m].name, values, o.shard.active);
             }
             for (size_t k = 0; k < report.headroom.size(); ++k) {
                 const ImageRGB spliced =
                     spliceTruth(predictions[0], gt, kTruthParts[k], ex.masks[e]);
-                const MetricValues values = metricValues(spliced, gt, ex.masks[e]);
+                const MetricValues values =
+                    metricColumns(compareEnvmaps(spliced, gt, &ex.masks[e]));
                 addScores(report.headroom[k], values);
                 csv << evalCsvRow(example, e, report.headroom[k].name, values, false);
             }

@@ -550,7 +550,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.directAdversarialWeight > 0)
         progress << "; envmaps also " << o.directAdversarialWeight
                  << " x the PatchGAN generator loss, from the first step";
-    if (o.adversarialInput == "log")
+    // The generator loss's weight wherever stage 3 runs: the paper's, or the direct one.
+    const double adversarialWeight = direct ? o.directAdversarialWeight : kAdversarialWeight;
+    if (o.adversarialInput == "log" && adversarialWeight > 0)
         progress << "; the discriminator sees ln(1 + radiance), not clamped sRGB";
     if (o.closureWeight > 0)
         progress << "; envmaps also " << o.closureWeight
@@ -573,7 +575,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         o.stopAfter > 0 ? std::min(o.iterations, firstIteration + o.stopAfter) : o.iterations;
     for (; s.iteration < sittingEnd; ++s.iteration) {
         const int it = s.iteration;
-        const int stage = stageAt(it, o.iterations, direct, o.directAdversarialWeight > 0);
+        const int stage = stageAt(it, o.iterations, direct, adversarialWeight > 0);
         const double lr =
             it >= int(kLowLearningRateStart * o.iterations) ? o.learningRate / 10 : o.learningRate;
         setLearningRate(*s.optimizer, lr);
@@ -654,8 +656,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                                                  "the discriminator's all-reduce");
                     s.discriminatorOptimizer->step();
                     advLoss = generatorHingeLoss(s.discriminator(seenByDiscriminator(env)));
-                    loss =
-                        loss + (direct ? o.directAdversarialWeight : kAdversarialWeight) * advLoss;
+                    loss = loss + adversarialWeight * advLoss;
                 }
             }
             window.secondsForward += secondsSince(clock);
