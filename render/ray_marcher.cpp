@@ -23,6 +23,9 @@ void MarchOptions::validate() const {
     if (!(cellRefineBound > 0.0))
         throw InputError("refinement bound of the cell quadrature must be positive, got " +
                          std::to_string(cellRefineBound));
+    if (!(surfaceTransmittance > 0.0 && surfaceTransmittance < 1.0))
+        throw InputError("surface transmittance must be in (0, 1), got " +
+                         std::to_string(surfaceTransmittance));
     if (cellNodes < 0 || cellNodes > 3)
         throw InputError("Gauss nodes per lattice cell must be 0 (fixed steps) or 1-3, got " +
                          std::to_string(cellNodes));
@@ -33,9 +36,14 @@ namespace {
 constexpr double kSubdivideMinT = 1e-9;  // transmittance below which thick steps stay whole
 constexpr int kMaxHalvings = 12;         // a cell piece is cut into at most 2^12 parts
 
+// ln(x) for x >= 1: the optical depth from where the transmittance was x times the surface
+// threshold to where it meets it. x is at most 2 for the usual threshold of 1/2.
+inline double surfaceCrossing(double x) { return x <= 2.0 ? logOfOneToTwo(x) : std::log(x); }
+
 // Adds one segment [t, t + dt] of constant medium `s` to the ray. Returns false once the
-// transmittance is below minT.
-inline bool addSegment(const RenderSample& s, double t, double dt, double minT, RayResult& r) {
+// transmittance is below minT; records where it first falls below surfaceT.
+inline bool addSegment(const RenderSample& s, double t, double dt, double minT, double surfaceT,
+                       RayResult& r) {
     const double sigma = s.sigma, tau = sigma * dt;
     // E = exp(-tau) and weight = (1 - E) / sigma, stable for tiny sigma (-> dt) and huge
     // sigma (-> 1/sigma); one exp per segment, a series where 1 - E would cancel.
@@ -53,10 +61,11 @@ inline bool addSegment(const RenderSample& s, double t, double dt, double minT, 
     r.radiance[2] += tw * s.emission[2];
     const double before = r.transmittance;
     r.transmittance *= E;
-    // Crossing T = 0.5 inside this segment: once per ray, so one branch that is nearly never
-    // taken (`&&` would branch on `before >= 0.5` too, which flips once per ray, and mispredict).
-    if ((before >= 0.5) & (r.transmittance < 0.5))
-        r.surfaceDistance = t + logOfOneToTwo(before / 0.5) / sigma;  // before / 0.5 in [1, 2]
+    // Crossing T = surfaceT inside this segment: once per ray, so one branch that is nearly never
+    // taken (`&&` would branch on `before >= surfaceT` too, which flips once per ray, and
+    // mispredict).
+    if ((before >= surfaceT) & (r.transmittance < surfaceT))
+        r.surfaceDistance = t + surfaceCrossing(before / surfaceT) / sigma;
     return r.transmittance >= minT;
 }
 
@@ -77,7 +86,8 @@ bool integrateSpan(const Sampler& sample, double t0, double t1, double stepT, co
         const double tau = double(s.sigma) * dt;
         // Below kSubdivideMinT what follows cannot matter: do not pay for sub-steps there.
         if (tau <= o.maxStepOpticalDepth || r.transmittance < kSubdivideMinT) {
-            if (!addSegment(s, start, dt, o.minTransmittance, r)) return false;
+            if (!addSegment(s, start, dt, o.minTransmittance, o.surfaceTransmittance, r))
+                return false;
             continue;
         }
         const int m = int(std::min<double>(kMaxSubsteps, std::ceil(tau / o.maxStepOpticalDepth)));
@@ -85,7 +95,8 @@ bool integrateSpan(const Sampler& sample, double t0, double t1, double stepT, co
         for (int j = 0; j < m; ++j) {
             const double subStart = start + j * sub;
             const RenderSample ss = sample(subStart + 0.5 * sub);
-            if (ss.sigma > 0.f && !addSegment(ss, subStart, sub, o.minTransmittance, r))
+            if (ss.sigma > 0.f &&
+                !addSegment(ss, subStart, sub, o.minTransmittance, o.surfaceTransmittance, r))
                 return false;
         }
     }
@@ -214,8 +225,8 @@ bool integrateCellPiece(const Sampler& sample, double ta, double h, const CellQu
         double start = part.start;
         for (int q = 0; q < rule.count; ++q) {
             const double length = part.length * rule.weight[q];
-            if (atNode[q].sigma > 0.f &&
-                !addSegment(atNode[q], start, length, o.minTransmittance, r))
+            if (atNode[q].sigma > 0.f && !addSegment(atNode[q], start, length, o.minTransmittance,
+                                                     o.surfaceTransmittance, r))
                 return false;
             start += length;
         }

@@ -52,20 +52,23 @@ struct MarchOptions {
     double cellRefineBound = 1.0;  // cells: halve a piece above this (optical depth per node
                                    // x transmittance x brightness / typical radiance); the
                                    // default keeps envmap RMSE below 1e-3 of the mean radiance
+    double surfaceTransmittance = 0.5;  // RayResult::surfaceDistance is where T falls below this
 
     // Fine fixed step, thin sub-steps, no skipping, no early stop: the answer other settings
     // are measured against.
     static MarchOptions reference() { return {0.05, 0.0, false, 0.02, 0}; }
     // Throws InputError for non-positive or absurd steps, a threshold outside [0, 1), a
-    // non-positive maxStepOpticalDepth or cellRefineBound, or cellNodes outside [0, 3].
+    // non-positive maxStepOpticalDepth or cellRefineBound, a surfaceTransmittance outside (0, 1),
+    // or cellNodes outside [0, 3].
     void validate() const;
 };
 
 struct RayResult {
     double radiance[3] = {0.0, 0.0, 0.0};  // linear RGB
     double transmittance = 1.0;            // what is left for the (black) space behind
-    // Distance at which the transmittance first fell below 1/2: where the ray "hits" the
-    // scene (object insertion uses it as the scene's depth). Infinite if it never did.
+    // Distance at which the transmittance first fell below MarchOptions::surfaceTransmittance
+    // (1/2 by default): where the ray "hits" the scene (object insertion uses it as the scene's
+    // depth). Infinite if it never did.
     double surfaceDistance = std::numeric_limits<double>::infinity();
 };
 

@@ -81,6 +81,26 @@ TEST(RayMarcher, RayMissingTheVolumeSeesBlack) {
     EXPECT_EQ(r.transmittance, 1.0);
 }
 
+TEST(RayMarcher, SurfaceDistanceIsWhereTheTransmittanceMeetsItsThreshold) {
+    // From the centre of a homogeneous cube, T(t) = exp(-sigma t): it falls below T* at
+    // t = -ln(T*) / sigma, in the cell quadrature and in fixed steps alike.
+    const float sigma = 2.f;
+    const RenderVolume volume(homogeneousCube(sigma, openvdb::Vec3s(1.f)));
+    for (int nodes : {0, 2})
+        for (double threshold : {0.5, 0.8, 0.3}) {
+            MarchOptions o;
+            o.cellNodes = nodes;
+            o.surfaceTransmittance = threshold;
+            const RayResult r = marchRay(volume, Vec3d(0), Vec3d(1, 0, 0), o);
+            EXPECT_NEAR(r.surfaceDistance, -std::log(threshold) / sigma, 1e-6)
+                << "nodes " << nodes << " threshold " << threshold;
+        }
+    // A ray that never gets that dark has no surface.
+    MarchOptions o;
+    o.surfaceTransmittance = 1e-3;  // the cube's 1 unit leaves exp(-2) = 0.135
+    EXPECT_TRUE(std::isinf(marchRay(volume, Vec3d(0), Vec3d(1, 0, 0), o).surfaceDistance));
+}
+
 TEST(RayMarcher, ImpossibleOptionsAreRefused) {
     EXPECT_THROW((MarchOptions{0.0, 1e-4, true}.validate()), InputError);
     EXPECT_THROW((MarchOptions{std::nan(""), 1e-4, true}.validate()), InputError);
@@ -89,6 +109,11 @@ TEST(RayMarcher, ImpossibleOptionsAreRefused) {
     MarchOptions fourNodes;
     fourNodes.cellNodes = 4;
     EXPECT_THROW(fourNodes.validate(), InputError);
+    for (double surface : {0.0, 1.0, std::nan("")}) {
+        MarchOptions o;
+        o.surfaceTransmittance = surface;
+        EXPECT_THROW(o.validate(), InputError) << surface;
+    }
 }
 
 }  // namespace

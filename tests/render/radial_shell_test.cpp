@@ -1,0 +1,128 @@
+#include "render/radial_shell.h"
+
+#include "core/errors.h"
+#include "image/envmap_layout.h"
+#include "render/envmap.h"
+#include "tests/support/test_volumes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+namespace lh {
+namespace {
+
+// Two nested levels of 32^3: level 0 is 8 units wide around the origin, level 1 4 units wide
+// in front of it (z in [0, 4]). The default centre is (0, 0, 1).
+VolumeLayout smallLayout() { return VolumeLayout{8.0, 2, 32}; }
+
+LightingVolume onSmallLayout(const std::function<MediumSample(const Vec3d&)>& field) {
+    LightingVolume volume = LightingVolume::fromLayout(smallLayout());
+    for (int k = 0; k < 2; ++k) volume.fillLevel(k, field);
+    return volume;
+}
+
+// Translucent fog between 1.5 and 3 units from `centre`, red towards +x, blue elsewhere: along
+// each ray from the centre it is spread over 1.5 units (12 voxels of level 1) and lets 47% of
+// the light through.
+MediumSample fogAround(const Vec3d& centre, const Vec3d& p) {
+    const Vec3d d = p - centre;
+    const double r = d.length();
+    if (r < 1.5 || r > 3.0) return {};
+    return {0.5f, d.x() > 0.0 ? openvdb::Vec3s(1.f, 0.f, 0.f) : openvdb::Vec3s(0.f, 0.f, 1.f)};
+}
+
+double relativeRmse(const ImageRGB& a, const ImageRGB& b) {
+    double squared = 0, sum = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        squared += (a.pixels[i] - b.pixels[i]) * double(a.pixels[i] - b.pixels[i]);
+        sum += b.pixels[i];
+    }
+    const double n = double(a.pixels.size());
+    return std::sqrt(squared / n) / (sum / n);
+}
+
+TEST(RadialShell, KeepsTheEnvmapSeenFromItsCentreWithFarFewerVoxels) {
+    const Vec3d centre = defaultShellCentre(smallLayout());
+    ASSERT_EQ(centre, Vec3d(0, 0, 1));
+    const LightingVolume fog = onSmallLayout([&](const Vec3d& p) { return fogAround(centre, p); });
+    const LightingVolume shell = collapseToShell(fog, centre);
+
+    const EnvmapOptions options{120, 60, MarchOptions{}};
+    const ImageRGB before = renderEnvmap(RenderVolume(fog), centre, options);
+    const ImageRGB after = renderEnvmap(RenderVolume(shell), centre, options);
+    // The same light from the centre, up to the lattice and the cube map of directions.
+    EXPECT_LT(relativeRmse(after, before), 0.05);
+    // Red at +x (column 3W/4), blue at -x (column W/4), as before.
+    EXPECT_GT(after.at(90, 30)[0], 0.4f);
+    EXPECT_LT(after.at(90, 30)[2], 0.05f);
+    EXPECT_GT(after.at(30, 30)[2], 0.4f);
+    // A layer three voxels thick instead of fog twelve voxels thick.
+    EXPECT_LT(shell.activeVoxelCount(), fog.activeVoxelCount() / 2);
+    // And opaque: a ray from the centre stops in it, with the composite colour
+    // 1 - exp(-0.5 x 1.5) = 0.53 of red.
+    const RayResult ray = marchRay(RenderVolume(shell), centre, Vec3d(1, 0, 0), MarchOptions{});
+    EXPECT_LT(ray.transmittance, 0.01);
+    EXPECT_NEAR(ray.radiance[0], 1.0 - std::exp(-0.75), 0.03);
+    // The layer is centred where the fog had gathered half its alpha, 1 - exp(-0.5 (t - 1.5))
+    // = 0.53 / 2 at t = 2.11, and is 1.5 voxels of level 0 (0.375) deep on either side: the
+    // ray stops in its front half.
+    const double median = 1.5 - 2.0 * std::log(1.0 - 0.5 * (1.0 - std::exp(-0.75)));
+    EXPECT_NEAR(median, 2.11, 0.01);
+    EXPECT_GT(ray.surfaceDistance, median - 0.375);
+    EXPECT_LT(ray.surfaceDistance, median);
+}
+
+TEST(RadialShell, FillsTheEdgeOfANearObjectSoThatNoRayEscapesBehindIt) {
+    // A closed wall 2.5 units from the centre and an opaque block in front of it. Seen from the
+    // centre, the block hides a patch of the wall; the shell holds the block's face there.
+    const Vec3d centre = defaultShellCentre(smallLayout());
+    const LightingVolume room = onSmallLayout([&](const Vec3d& p) -> MediumSample {
+        const Vec3d d = p - centre;
+        if (std::abs(d.length() - 2.5) < 0.15) return {20.f, openvdb::Vec3s(0.5f)};
+        if (std::abs(d.x()) < 0.3 && std::abs(d.y()) < 0.3 && d.z() > 0.8 && d.z() < 1.2)
+            return {20.f, openvdb::Vec3s(1.f, 1.f, 0.f)};
+        return {};
+    });
+    const RenderVolume shell(collapseToShell(room, centre));
+    // From a point beside the centre, a ray that passes the block's edge and ends on the wall
+    // behind the block: the wall there is hidden from the centre, so without the skirt joining
+    // the block's edge to the wall this ray would leave the volume.
+    const Vec3d from = centre + Vec3d(0.9, 0, 0), to = centre + Vec3d(0, 0, 2.5);
+    const RayResult ray = marchRay(shell, from, (to - from).unit(), MarchOptions{});
+    EXPECT_LT(ray.transmittance, 0.01);
+    // In the original room the same ray misses the block too and stops on the wall.
+    const RayResult original =
+        marchRay(RenderVolume(room), from, (to - from).unit(), MarchOptions{});
+    EXPECT_LT(original.transmittance, 0.01);
+    EXPECT_NEAR(original.radiance[2], 0.5, 0.05);  // the grey wall, not the yellow block
+}
+
+TEST(RadialShell, EmptyVolumeStaysEmpty) {
+    const LightingVolume empty = LightingVolume::fromLayout(smallLayout());
+    EXPECT_EQ(collapseToShell(empty, Vec3d(0, 0, 1)).activeVoxelCount(), 0u);
+}
+
+TEST(RadialShell, RefusesWhatItCannotCollapse) {
+    const LightingVolume fog =
+        onSmallLayout([](const Vec3d& p) { return fogAround(Vec3d(0, 0, 1), p); });
+    // Outside level 0 (which spans [-4, 4]^3), or not a point.
+    EXPECT_THROW(collapseToShell(fog, Vec3d(5, 0, 0)), InputError);
+    EXPECT_THROW(collapseToShell(fog, Vec3d(0, std::nan(""), 0)), InputError);
+    RadialShellOptions thin;
+    thin.halfWidthVoxels = 0.1;
+    EXPECT_THROW(collapseToShell(fog, Vec3d(0, 0, 1), thin), InputError);
+    RadialShellOptions coarse;
+    coarse.directionsPerFace = 2;
+    EXPECT_THROW(collapseToShell(fog, Vec3d(0, 0, 1), coarse), InputError);
+    // A volume without the nested layout (a foreign file's levels).
+    const LightingVolume foreign =
+        test::volumeOf({test::makeLevel(0.1, Vec3d(-1), openvdb::Coord(20), [](const Vec3d&) {
+            return MediumSample{1.f, {}};
+        })});
+    EXPECT_THROW(collapseToShell(foreign, Vec3d(0)), InputError);
+}
+
+}  // namespace
+}  // namespace lh
