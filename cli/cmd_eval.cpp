@@ -31,6 +31,7 @@ void addEvalCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "As predict's --prune-alpha (default: the model's, as predict's)")
         ->check(CLI::Range(0.0f, 1.0f));
+    cmd->add_flag("--shell", o->shell, "As predict's --shell");
     cmd->add_flag("--headroom", o->headroom,
                   "Also score ours with one part of the truth put in (the observed pixels, the "
                   "unobserved ones, the lamps and windows, the observed lamps and windows): what "

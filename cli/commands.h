@@ -17,6 +17,7 @@ void addOracleCommand(CLI::App& app);
 void addInsertCommand(CLI::App& app);
 void addBenchEnvmapCommand(CLI::App& app);
 void addSparsifyCommand(CLI::App& app);
+void addShellCommand(CLI::App& app);
 void addBenchSparsityCommand(CLI::App& app);
 void addEditCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);

@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
     lh::cli::addMergeCommand(app);
     lh::cli::addBenchEnvmapCommand(app);
     lh::cli::addSparsifyCommand(app);
+    lh::cli::addShellCommand(app);
     lh::cli::addBenchSparsityCommand(app);
 
     std::unique_ptr<tbb::global_control> threadLimit;

@@ -83,6 +83,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     po.device = o.device;
     po.threads = o.threads;
     if (o.pruneAlpha >= 0) po.pruneAlpha = o.pruneAlpha;
+    po.shell = o.shell;
     const Predictor predictor(po);
     const NetConfig& config = predictor.config();
     fs::create_directories(o.out);
@@ -209,7 +210,8 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
               {"scenes", dirs.size()},
               {"max_scenes", o.maxScenes},
               {"methods", methodNames},
-              {"prune_alpha", predictor.pruneAlpha()}}},
+              {"prune_alpha", predictor.pruneAlpha()},
+              {"shell", o.shell}}},
             {"csv", "metrics." + tag + ".csv"},
             {"sheet_rows", strips},
             {"examples", shardExamples},

@@ -34,6 +34,7 @@ struct EvalOptions {
     std::string device = "cpu";
     int threads = 0;
     float pruneAlpha = -1;  // predict's --prune-alpha; negative: the model's (as predict's)
+    bool shell = false;     // predict's --shell
     // Also score "ours" with one part of the truth put in (image/truth_splice.h): how much a
     // perfect MPI, a perfect completion or perfect lamps and windows alone would gain.
     // Not with shards.

@@ -4,6 +4,7 @@
 #include "net/device.h"
 #include "net/lighthouse_net.h"
 #include "net/volume_export.h"
+#include "render/radial_shell.h"
 
 #include <chrono>
 #include <cmath>
@@ -65,6 +66,7 @@ struct Predictor::Impl {
     torch::Device device{torch::kCPU};
     LighthouseNet net{nullptr};
     float pruneAlpha = kDefaultPruneAlpha;
+    bool shell = false;
 };
 
 Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -84,6 +86,7 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
     impl_->pruneAlpha = options.pruneAlpha >= 0 ? options.pruneAlpha
                         : trainedUnder > 0      ? float(trainedUnder)
                                                 : kDefaultPruneAlpha;
+    impl_->shell = options.shell;
 }
 
 float Predictor::pruneAlpha() const { return impl_->pruneAlpha; }
@@ -111,6 +114,8 @@ Prediction Predictor::predict(const StereoPair& pair) const {
     torch::NoGradGuard noGrad;
     const PipelineOutput out = impl_->net->run(inputs, true);
     result.volume = cubesToVolume(out.cubes, inputs.layout, impl_->pruneAlpha);
+    if (impl_->shell)
+        result.volume = collapseToShell(result.volume, defaultShellCentre(inputs.layout));
     result.mpiOnly = cubesToVolume(out.mpiCubes, inputs.layout);
     result.mpi = tensorToMpi(out.mpi, inputs.ref, inputs.depths);
     result.volume.refCamera = cams.ref;

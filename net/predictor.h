@@ -61,6 +61,9 @@ struct PredictorOptions {
     // empty; 0 keeps everything down to volume_export.h's 1e-4. Negative: the threshold the
     // model was trained under (train --prune-alpha), else kDefaultPruneAlpha.
     float pruneAlpha = -1;
+    // Collapse the completed volume into an opaque shell seen from defaultShellCentre
+    // (render/radial_shell.h): the same envmap from there, far fewer voxels for rays to cross.
+    bool shell = false;
 };
 
 // The bundled model's path.

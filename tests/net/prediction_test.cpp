@@ -5,6 +5,7 @@
 #include "net/lighthouse_net.h"
 #include "net/predictor.h"
 #include "render/envmap.h"
+#include "render/radial_shell.h"
 #include "render/render_volume.h"
 #include "tests/net/net_test_scenes.h"
 
@@ -150,6 +151,38 @@ TEST_F(PredictionTest, PrunesAtTheThresholdTheModelWasTrainedUnderUnlessToldOthe
     }
     EXPECT_GT(kept, 0);
     EXPECT_GT(all.volume.activeVoxelCount(), std::size_t(kept));
+}
+
+TEST_F(PredictionTest, ShellKeepsTheEnvmapSeenFromItsCentre) {
+    PredictorOptions shellOptions{modelPath(), "cpu", 2, ""};
+    shellOptions.shell = true;
+    const Predictor shelled(shellOptions);
+    StereoPair pair = planePair(0.2);
+    pair.cameras.near = 1.0;
+    pair.cameras.far = 4.0;
+    const Prediction fog = predictor.predict(pair), shell = shelled.predict(pair);
+    expectFinitePrediction(shell);
+    ASSERT_TRUE(shell.volume.layout.has_value());
+    EXPECT_EQ(*shell.volume.layout, *fog.volume.layout);
+    // The untrained network's fog fills the volume; the shell is a layer of it.
+    EXPECT_LT(shell.volume.activeVoxelCount(), fog.volume.activeVoxelCount() / 2);
+    EnvmapOptions options;
+    options.width = 64;
+    options.height = 32;
+    const Vec3d centre = defaultShellCentre(*fog.volume.layout);
+    const ImageRGB a = renderEnvmap(RenderVolume(fog.volume), centre, options);
+    const ImageRGB b = renderEnvmap(RenderVolume(shell.volume), centre, options);
+    double squared = 0, sum = 0, black = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        squared += double(a.pixels[i] - b.pixels[i]) * (a.pixels[i] - b.pixels[i]);
+        black += double(a.pixels[i]) * a.pixels[i];
+        sum += a.pixels[i];
+    }
+    const double n = double(a.pixels.size());
+    // The same light up to the tiny model's 16^3 lattice, on which the layer is resampled
+    // coarsely (0.14 here); a missing layer would be off by as much as a black envmap.
+    EXPECT_LT(std::sqrt(squared / n) / (sum / n), 0.2);
+    EXPECT_GT(std::sqrt(black / n) / (sum / n), 0.9);
 }
 
 TEST(PredictorOptionsTest, UnknownDeviceOrMissingModelIsAClearError) {

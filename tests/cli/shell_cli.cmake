@@ -1,0 +1,27 @@
+# `lighthouse shell`: bad input fails with one clear line and leaves no output behind; a good
+# run writes a loadable volume and says how many voxels it kept.
+lighthouse_cli_error(shell_random_bytes
+  EXPECT "random[.]vdb.*VDB"
+  ABSENT shell_random.vdb
+  ARGS shell random.vdb -o shell_random.vdb)
+lighthouse_cli_error(shell_output_not_vdb
+  EXPECT "output must be a [.]vdb file"
+  ABSENT shell.exr
+  ARGS shell example.vdb -o shell.exr)
+lighthouse_cli_error(shell_centre_outside_the_volume
+  EXPECT "centre [(]100, 0, 0[)] lies outside the volume.*choose a point inside the room"
+  ABSENT shell_outside.vdb
+  ARGS shell example.vdb --centre 100,0,0 -o shell_outside.vdb)
+lighthouse_cli_error(shell_centre_not_a_point
+  EXPECT "--centre"
+  ABSENT shell_nan.vdb
+  ARGS shell example.vdb --centre 1,nan,0 -o shell_nan.vdb)
+lighthouse_cli_ok(shell_example
+  STDOUT "shell around [(]0, 0, 1[.]75[)] in .* s: [0-9]+ -> [0-9]+ active voxels -> shell_example[.]vdb"
+  FILES shell_example.vdb
+  ARGS shell example.vdb -o shell_example.vdb)
+lighthouse_cli_ok(shell_example_is_a_volume
+  STDOUT "3 level[(]s[)]"
+  ARGS info shell_example.vdb)
+set_tests_properties(cli.ok.shell_example PROPERTIES FIXTURES_SETUP lighthouse_shell)
+set_tests_properties(cli.ok.shell_example_is_a_volume PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_shell")
