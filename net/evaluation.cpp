@@ -184,6 +184,9 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     }
 
     report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
+    if (o.shell)
+        report.markdown += "\n\"ours\": every predicted volume collapsed into an opaque shell "
+                           "(`--shell`, docs/network.md).\n";
     if (o.headroom) report.markdown += headroomTableMarkdown(report.methods[0], report.headroom);
     if (o.shard.active) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the

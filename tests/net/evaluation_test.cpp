@@ -1,6 +1,6 @@
 // `lighthouse eval`'s headroom rows on a tiny data set and an untrained model: each row is
 // ours with one part of the truth put in, so the part put in scores perfectly and the rest
-// scores as ours.
+// scores as ours. And --shell, which changes ours and nothing else.
 #include "net/evaluation.h"
 #include "core/errors.h"
 #include "net/lighthouse_net.h"
@@ -55,6 +55,17 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     EXPECT_GT(withBothParts, 0) << "no envmap with observed and unobserved pixels to test on";
     EXPECT_NE(report.markdown.find("| ours + true lamps and windows"), std::string::npos)
         << report.markdown;
+
+    // --shell scores the shelled volumes and says so; the MPI-only row does not change.
+    EvalOptions shelled = o;
+    shelled.headroom = false;
+    shelled.shell = true;
+    const EvalReport withShell = evaluate(shelled, progress);
+    EXPECT_NE(withShell.markdown.find("collapsed into an opaque shell"), std::string::npos);
+    EXPECT_EQ(report.markdown.find("collapsed into an opaque shell"), std::string::npos);
+    ASSERT_EQ(withShell.methods.size(), report.methods.size());
+    EXPECT_EQ(withShell.methods[1].psnrAll, report.methods[1].psnrAll);
+    EXPECT_NE(withShell.methods[0].psnrAll, ours.psnrAll);
 
     o.shard = Shard{0, 2, true};
     EXPECT_THROW(evaluate(o, progress), InputError) << "headroom rows are not sharded";
