@@ -7,10 +7,13 @@
 #include "core/errors.h"
 #include "core/path_guard.h"
 #include "render/radial_shell.h"
+#include "render/render_volume.h"
 #include "vdb/mantissa_rounding.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <optional>
 #include <string>
 
@@ -38,6 +41,16 @@ void runShell(const ShellOptions& o) {
                          "' has no nested layout (lighthouse_layout metadata): only volumes "
                          "written by predict or make-example can be collapsed into a shell");
     const Vec3d c = centre ? *centre : defaultShellCentre(*in.volume.layout);
+    if (centre && in.volume.layout->box(0).contains(c)) {
+        // Inside a wall or an object every ray from the centre stops at once, and the shell
+        // wraps the centre instead of the room.
+        const RenderVolume prepared(in.volume);
+        const double opticalDepth = prepared.sampleWorld(c).sigma * prepared.voxelSizeAt(c);
+        if (opticalDepth > std::log(2.0))
+            std::cerr << "warning: --centre (" << c.x() << ", " << c.y() << ", " << c.z()
+                      << ") lies inside the medium (a wall or an object), so the shell will wrap "
+                         "it tightly; choose a point in the room's free space\n";
+    }
     const auto start = std::chrono::steady_clock::now();
     const LightingVolume shell = collapseToShell(in.volume, c);
     const double seconds =

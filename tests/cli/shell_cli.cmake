@@ -25,3 +25,9 @@ lighthouse_cli_ok(shell_example_is_a_volume
   ARGS info shell_example.vdb)
 set_tests_properties(cli.ok.shell_example PROPERTIES FIXTURES_SETUP lighthouse_shell)
 set_tests_properties(cli.ok.shell_example_is_a_volume PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_shell")
+# A centre inside a wall (the example room's red wall, near x = -2.6) still runs, with a warning
+# that says why the shell will be wrong and what to choose instead.
+add_test(NAME cli.warning.shell_centre_inside_a_wall
+  COMMAND bash -c "\"$0\" shell example.vdb --centre -2.6,0,3 -o shell_wall.vdb 2>&1 | grep -q 'warning: --centre .* lies inside the medium .*choose a point in the room.s free space'"
+          ${LH_CLI_EXE})
+lighthouse_cli_properties(cli.warning.shell_centre_inside_a_wall)
