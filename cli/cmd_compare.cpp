@@ -7,6 +7,7 @@
 #include "core/dataset_files.h"
 #include "core/errors.h"
 #include "core/path_guard.h"
+#include "image/highlights.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 
@@ -104,12 +105,30 @@ void printDisplayBias(double bias) {
               << " (mean sRGB difference; positive: brighter than the truth)\n";
 }
 
+// The lamps and windows (image/highlights.h), one line below the table: recall and precision,
+// "none" where no envmap has a highlight on the side the share is taken of (the truth for the
+// recall, the prediction for the precision).
+void printHighlights(const std::string& recall, const std::string& precision) {
+    std::cout << "lamps and windows (luminance > 1) within " << kHighlightRadiusDegrees
+              << " deg: recall " << recall << ", precision " << precision << "\n";
+}
+
+std::string highlightText(double share) {
+    return std::isnan(share) ? std::string("none") : formatMetric(share);
+}
+
+std::string highlightText(const std::vector<double>& shares, int total) {
+    const MeanStd s = meanStd(shares);
+    return s.count == 0 ? std::string("none") : formatMeanStd(s, total);
+}
+
 void compareSingle(const CompareOptions& o) {
     const EnvmapMetrics m = compareFiles(o.pred, o.gt, o.mask);
     printHeader();
     printRow("all content", formatMetric(m.psnrAll), formatMetric(m.angularAll),
              formatMetric(m.logLuminanceAll), formatMetric(m.irradianceError),
              formatMetric(m.radianceRatio));
+    printHighlights(highlightText(m.highlightRecall), highlightText(m.highlightPrecision));
     if (o.mask.empty()) return;
     if (std::isnan(m.psnrObserved))
         std::cout << padded("observed content", 20) << "no observed pixels in '" << o.mask << "'\n";
@@ -175,9 +194,7 @@ void writeCsv(AtomicOutput& out, const std::vector<EnvmapPair>& pairs,
               const std::vector<EnvmapMetrics>& metrics) {
     {
         std::ofstream file(out.tempPath());
-        file << "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,"
-                "log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio,"
-                "psnr_unobserved_db,srgb_bias_unobserved\n";
+        file << "envmap," << metricColumnsCsvHeader() << "\n";
         for (std::size_t i = 0; i < pairs.size(); ++i) {
             const EnvmapMetrics& m = metrics[i];
             file << csvField(pairs[i].relative);
@@ -209,7 +226,7 @@ void compareBatch(const CompareOptions& o) {
     std::vector<EnvmapMetrics> metrics;
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
     std::vector<double> logLuminanceAll, logLuminanceObserved, irradiance, radianceRatio;
-    std::vector<double> psnrUnobserved, biasUnobserved;
+    std::vector<double> psnrUnobserved, biasUnobserved, highlightRecall, highlightPrecision;
     int withMask = 0;
     for (const EnvmapPair& p : pairs) {
         const EnvmapMetrics m = compareFiles(p.pred, p.gt, p.mask);
@@ -219,6 +236,8 @@ void compareBatch(const CompareOptions& o) {
         logLuminanceAll.push_back(m.logLuminanceAll);
         irradiance.push_back(m.irradianceError);
         radianceRatio.push_back(m.radianceRatio);
+        highlightRecall.push_back(m.highlightRecall);
+        highlightPrecision.push_back(m.highlightPrecision);
         if (!p.mask.empty()) {
             ++withMask;
             psnrObserved.push_back(m.psnrObserved);
@@ -248,6 +267,8 @@ void compareBatch(const CompareOptions& o) {
                  "-", "-");
         printDisplayBias(meanStd(biasUnobserved).mean);
     }
+    printHighlights(highlightText(highlightRecall, total),
+                    highlightText(highlightPrecision, total));
     if (csv) std::cout << "per-envmap rows: " << csv->finalPath() << "\n";
 }
 
@@ -257,9 +278,10 @@ void addCompareCommand(CLI::App& app) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* cmd = app.add_subcommand(
         "compare",
-        "PSNR, RGB angular error, log-luminance RMSE, irradiance error and mean radiance "
-        "ratio of predicted envmaps against ground truth, and with a mask the PSNR and "
-        "display bias of the unobserved pixels (docs/metrics.md)");
+        "PSNR, RGB angular error, log-luminance RMSE, irradiance error, mean radiance ratio "
+        "and where the lamps and windows are (highlight recall and precision) of predicted "
+        "envmaps against ground truth, and with a mask the PSNR and display bias of the "
+        "unobserved pixels (docs/metrics.md)");
     cmd->add_option("pred", o->pred, "Predicted envmap (.exr), or PRED_DIR with --batch")
         ->required();
     cmd->add_option("gt", o->gt, "Ground-truth envmap (.exr), or GT_DIR with --batch")->required();

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "image/envmap_layout.h"
+#include "image/highlights.h"
 #include "image/image_io.h"
 #include "image/irradiance_weights.h"
 #include "image/luminance.h"
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace lh {
 
@@ -199,9 +201,19 @@ double meanRadianceRatio(const ImageRGB& pred, const ImageRGB& gt) {
 }
 
 std::array<double, kEnvmapMetricColumns> metricColumns(const EnvmapMetrics& m) {
-    return {m.psnrAll,         m.angularAll,           m.psnrObserved,    m.angularObserved,
-            m.logLuminanceAll, m.logLuminanceObserved, m.irradianceError, m.radianceRatio,
-            m.psnrUnobserved,  m.displayBiasUnobserved};
+    return {m.psnrAll,         m.angularAll,
+            m.psnrObserved,    m.angularObserved,
+            m.logLuminanceAll, m.logLuminanceObserved,
+            m.irradianceError, m.radianceRatio,
+            m.psnrUnobserved,  m.displayBiasUnobserved,
+            m.highlightRecall, m.highlightPrecision};
+}
+
+std::string metricColumnsCsvHeader() {
+    std::string header;
+    for (const char* name : kEnvmapMetricColumnNames)
+        header += std::string(header.empty() ? "" : ",") + name;
+    return header;
 }
 
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
@@ -224,6 +236,9 @@ EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
         m.displayBiasUnobserved = biasOf(invented);
     }
     m.radianceRatio = meanRadianceRatio(pred, gt);
+    const HighlightMatch highlights = matchHighlights(pred, gt);
+    m.highlightRecall = highlights.recall;
+    m.highlightPrecision = highlights.precision;
     return m;
 }
 

@@ -93,16 +93,25 @@ struct EnvmapMetrics {
     // Where the mask is zero: what a predictor had to invent.
     double psnrUnobserved = std::numeric_limits<double>::quiet_NaN();         // dB
     double displayBiasUnobserved = std::numeric_limits<double>::quiet_NaN();  // sRGB units
+    // Lamps and windows (image/highlights.h): the shares of the true and the predicted
+    // highlights that the other shows within kHighlightRadiusDegrees.
+    double highlightRecall = std::numeric_limits<double>::quiet_NaN();     // ratio
+    double highlightPrecision = std::numeric_limits<double>::quiet_NaN();  // ratio
 };
 
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
                              const std::vector<std::uint8_t>* mask = nullptr);
 
-// The numbers of `m` in the column order of `compare --csv` and eval's metrics.csv: PSNR all,
-// angular all, PSNR observed, angular observed, log-lum RMSE all, log-lum RMSE observed,
-// irradiance error, radiance ratio, PSNR unobserved, display bias unobserved.
-constexpr std::size_t kEnvmapMetricColumns = 10;
+// The numbers of `m` in the column order of `compare --csv` and eval's metrics.csv, and those
+// columns' names. New columns go at the end, so scripts that index the first ones keep working.
+constexpr std::size_t kEnvmapMetricColumns = 12;
 std::array<double, kEnvmapMetricColumns> metricColumns(const EnvmapMetrics& m);
+constexpr std::array<const char*, kEnvmapMetricColumns> kEnvmapMetricColumnNames = {
+    "psnr_all_db",        "angular_all_deg",       "psnr_observed_db",     "angular_observed_deg",
+    "log_lum_rmse_all",   "log_lum_rmse_observed", "irradiance_rel_error", "radiance_ratio",
+    "psnr_unobserved_db", "srgb_bias_unobserved",  "highlight_recall",     "highlight_precision"};
+// The names joined by commas: the end of a CSV header.
+std::string metricColumnsCsvHeader();
 
 // Reads an observed-pixel mask (a PNG, or any image readImage reads): a pixel is observed
 // when any channel is nonzero. Throws FileError if unreadable, InputError unless it is

@@ -23,9 +23,6 @@ constexpr TruthPart kTruthParts[] = {TruthPart::Observed, TruthPart::Unobserved,
 // A line for a table: "true observed pixels", ...
 const char* truthPartName(TruthPart part);
 
-// True luminance above which a pixel is a lamp or a window: what an exposed photo clips.
-constexpr double kLampLuminance = 1.0;
-
 // `prediction` with the pixels of `part` taken from `truth`. `observed` holds one byte per
 // pixel (1 = observed; image/metrics.h loadMask), used by the observed and unobserved parts.
 // Throws InputError if the sizes differ.

@@ -4,6 +4,7 @@
 #include "core/errors.h"
 #include "core/shard.h"
 #include "image/contact_sheet.h"
+#include "image/highlights.h"
 #include "image/image.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
@@ -31,6 +32,12 @@ std::string cell(const std::vector<double>& values, int precision) {
     std::ostringstream out;
     out << std::fixed << std::setprecision(precision) << m.mean << " +- " << m.std;
     return out.str();
+}
+
+// As cell, and how many values it holds of all: for metrics that an envmap may not have.
+std::string countedCell(const std::vector<double>& values, int precision) {
+    return cell(values, precision) + " (" + std::to_string(meanStd(values).count) + " of " +
+           std::to_string(values.size()) + ")";
 }
 
 // As cell, with the mean's sign always shown.
@@ -75,11 +82,7 @@ CsvRow parseCsvRow(const std::string& line, const std::string& where) {
 
 }  // namespace
 
-std::string evalCsvHeader() {
-    return "example,envmap,method,psnr_all_db,angular_all_deg,psnr_observed_db,"
-           "angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,"
-           "radiance_ratio,psnr_unobserved_db,srgb_bias_unobserved\n";
-}
+std::string evalCsvHeader() { return "example,envmap,method," + metricColumnsCsvHeader() + "\n"; }
 
 std::string evalCsvRow(const std::string& example, std::size_t envmap, const std::string& method,
                        const MetricValues& values, bool exact) {
@@ -102,6 +105,8 @@ void addScores(MethodScores& s, const MetricValues& v) {
     s.radianceRatio.push_back(v[7]);
     s.psnrUnobserved.push_back(v[8]);
     s.displayBiasUnobserved.push_back(v[9]);
+    s.highlightRecall.push_back(v[10]);
+    s.highlightPrecision.push_back(v[11]);
 }
 
 std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::size_t scenes,
@@ -128,6 +133,15 @@ std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::siz
     for (const auto& m : methods)
         md << "| " << m.name << " | " << cell(m.psnrUnobserved, 2) << " | "
            << signedCell(m.displayBiasUnobserved, 3) << " |\n";
+    md << "\nLamps and windows, as a mirror ball would show them (pixels of luminance above 1): "
+       << "recall, the share of the true ones (by solid angle) that the method also shows "
+       << "above 1 within " << kHighlightRadiusDegrees << " degrees; precision, the share of "
+       << "its own that lie as near a true one (docs/metrics.md); mean +- std over the envmaps "
+       << "that have any (how many, of all, in brackets):\n\n"
+       << "| method | highlight recall | highlight precision |\n|---|---|---|\n";
+    for (const auto& m : methods)
+        md << "| " << m.name << " | " << countedCell(m.highlightRecall, 2) << " | "
+           << countedCell(m.highlightPrecision, 2) << " |\n";
     return md.str();
 }
 

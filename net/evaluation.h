@@ -50,6 +50,7 @@ struct MethodScores {
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
     std::vector<double> logLuminanceAll, logLuminanceObserved, irradianceError, radianceRatio;
     std::vector<double> psnrUnobserved, displayBiasUnobserved;
+    std::vector<double> highlightRecall, highlightPrecision;  // NaN: no highlight to match
 };
 
 struct EvalReport {

@@ -67,6 +67,19 @@ ok --stdout "^all content +$num +$num +$num +$num +$num$" -- "$lh" compare a_000
     "$lh" render-envmap bright.vdb --at 0,0,1 --size 32x16 -o bright.exr 2>/dev/null ||
     { echo "edit/render-envmap failed"; exit 1; }
 ok --stdout "^all content +$num +0[.]00 +$num +1[.]00 +2[.]00$" -- "$lh" compare bright.exr a_000.exr
+# Lamps and windows: the example's envmap has some (its lamp); at 1000 times its radiance every
+# pixel is above luminance 1, at a thousandth none is.
+for scale in 1000 0.001; do
+    "$lh" edit ../example.vdb --scale-radiance $scale -o scaled.vdb >/dev/null 2>&1 &&
+        "$lh" render-envmap scaled.vdb --at 0,0,1 --size 32x16 -o scaled_$scale.exr 2>/dev/null ||
+        { echo "edit/render-envmap failed"; exit 1; }
+done
+highlights="^lamps and windows [(]luminance > 1[)] within 10 deg: recall"
+ok --stdout "$highlights 1[.]00, precision 1[.]00$" -- "$lh" compare a_000.exr a_000.exr
+ok --stdout "$highlights none, precision none$" -- "$lh" compare scaled_0.001.exr scaled_0.001.exr
+ok --stdout "$highlights 0[.]00, precision none$" -- "$lh" compare scaled_0.001.exr a_000.exr
+ok --stdout "$highlights none, precision 0[.]00$" -- "$lh" compare scaled_1000.exr scaled_0.001.exr
+ok --stdout "$highlights 1[.]00, precision 0[.][0-9]{2}$" -- "$lh" compare scaled_1000.exr a_000.exr
 out=$("$lh" compare a_000.exr a_001.exr --mask mask_all.png 2>&1)
 psnr_all=$(value_of all 3 <<<"$out")
 [ "$psnr_all" != inf ] && [ -n "$psnr_all" ] || fail "different envmaps: PSNR '$psnr_all'"
@@ -103,9 +116,10 @@ ok --stdout "^3 envmaps, 1 with an observed mask" \
    --stdout "^observed content +$num ± 0[.]00 +$num ± 0[.]00 +$num ± 0[.]00 +- +-$" \
    --stdout "^unobserved content +$num ± 0[.]00 +- +- +- +-$" \
    --stdout "^display bias over unobserved content: [+-]0[.][0-9]{4} " \
+   --stdout "$highlights ($num ± $num( [(]n=[12][)])?|none), precision ($num ± $num( [(]n=[12][)])?|none)$" \
    --file rows.csv -- "$lh" compare --batch pred gt --csv rows.csv
 if [ -s rows.csv ]; then
-    [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio,psnr_unobserved_db,srgb_bias_unobserved" ] ||
+    [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio,psnr_unobserved_db,srgb_bias_unobserved,highlight_recall,highlight_precision" ] ||
         fail "CSV header: $(head -n 1 rows.csv)"
     [ "$(tail -n +2 rows.csv | cut -d, -f1 | tr '\n' ' ')" = \
       "scene_a/env_0.exr scene_b/env_0.exr scene_b/env_1.exr " ] || fail "CSV rows: $(cat rows.csv)"

@@ -55,6 +55,18 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     EXPECT_GT(withBothParts, 0) << "no envmap with observed and unobserved pixels to test on";
     EXPECT_NE(report.markdown.find("| ours + true lamps and windows"), std::string::npos)
         << report.markdown;
+    // With the true lamps and windows put in, every true highlight shows where it is.
+    const MethodScores& lamps = report.headroom[2];
+    int withHighlights = 0;
+    for (size_t i = 0; i < lamps.highlightRecall.size(); ++i) {
+        if (std::isnan(lamps.highlightRecall[i])) continue;
+        ++withHighlights;
+        EXPECT_EQ(lamps.highlightRecall[i], 1.0);
+    }
+    EXPECT_GT(withHighlights, 0) << "no envmap with a lamp or window to test on";
+    EXPECT_NE(report.markdown.find("| method | highlight recall | highlight precision |"),
+              std::string::npos)
+        << report.markdown;
 
     // --shell scores the shelled volumes and says so; the MPI-only row does not change.
     EvalOptions shelled = o;
