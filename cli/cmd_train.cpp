@@ -82,6 +82,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "Weight of the squared sRGB error of envmaps (what PSNR scores) beside the L1 "
                     "losses; 0: off")
         ->capture_default_str();
+    cmd->add_option("--highlight-weight", o->highlightWeight,
+                    "Weight of the highlight loss on envmaps: the lamps and windows the photo saw "
+                    "at least twice as bright as white (or as bright as they are), nothing else "
+                    "above white, as a mirror ball shows them; needs env_K_mask.png; 0: off")
+        ->capture_default_str();
     cmd->add_option("--view-hdr-weight", o->viewHdrWeight,
                     "Weight of the HDR loss (log radiance) of the MPI's held-out view against its "
                     "unclipped render tgt.exr: it teaches how bright clipped windows and lamps "

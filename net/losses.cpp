@@ -114,6 +114,33 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& 
         .mean();
 }
 
+namespace {
+
+torch::Tensor luminanceOf(const torch::Tensor& linear) {  // [N, 3, H, W] -> [N, 1, H, W]
+    return kLumaR * linear.narrow(1, 0, 1) + kLumaG * linear.narrow(1, 1, 1) +
+           kLumaB * linear.narrow(1, 2, 1);
+}
+
+// Mean of `values` over the pixels where `where` is true; 0 (with a gradient) where none is.
+torch::Tensor maskedMean(const torch::Tensor& values, const torch::Tensor& where) {
+    const auto w = where.to(values.dtype());
+    return (values * w).sum() / w.sum().clamp_min(1.0);
+}
+
+}  // namespace
+
+torch::Tensor highlightLoss(const torch::Tensor& predicted, const torch::Tensor& target,
+                            const torch::Tensor& observed) {
+    const auto yPred = luminanceOf(predicted).clamp_min(0.0);
+    const auto yTrue = luminanceOf(target).clamp_min(0.0);
+    const auto trueHighlight = yTrue > kLampLuminance;
+    const auto show =
+        torch::relu(torch::log1p(yTrue.clamp_max(2.0 * kLampLuminance)) - torch::log1p(yPred));
+    const auto hide = torch::relu(torch::log1p(yPred) - std::log1p(kLampLuminance));
+    return maskedMean(show, trueHighlight & (observed != 0)) +
+           maskedMean(hide, trueHighlight.logical_not());
+}
+
 torch::Tensor logRadianceEncode(const torch::Tensor& linear) {
     return torch::log1p(linear.clamp_min(0.0)) / std::log1p(kAdversarialLogPeak);
 }
@@ -141,8 +168,7 @@ torch::Tensor focusedIrradianceLoss(const torch::Tensor& predicted, const torch:
     if (focus == 0.0) return irradianceLoss(predicted, target);
     const auto linear = predicted.clamp_min(0.0);
     const auto frozen = linear.detach();
-    const auto luminance = kLumaR * frozen.narrow(1, 0, 1) + kLumaG * frozen.narrow(1, 1, 1) +
-                           kLumaB * frozen.narrow(1, 2, 1);  // [N, 1, H, W]
+    const auto luminance = luminanceOf(frozen);  // [N, 1, H, W]
     // (Y / mean Y)^focus normalised to a mean of 1 is Y^focus over its mean.
     const auto weight = luminance.pow(focus);
     const auto share = weight / (weight.mean({2, 3}, true) + 1e-12);

@@ -30,6 +30,18 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Te
 constexpr double kAdversarialLogPeak = 100.0;
 torch::Tensor logRadianceEncode(const torch::Tensor& linear);
 
+// Highlight loss: asks an envmap to show the lamps and windows that a mirror ball would show
+// and the photo saw (image/highlights.h: luminance Y above kLampLuminance = 1), and no others.
+// Envmaps [N, 3, H, W] linear; `observed` [N, 1, H, W], nonzero where the reference photo sees
+// the pixel's first surface. The sum of two means:
+//   over observed true highlights: relu(ln(1 + min(Y_gt, 2)) - ln(1 + Y_pred)),
+//   over pixels whose truth is not a highlight: relu(ln(1 + Y_pred) - ln 2);
+// a set without pixels adds 0. The per-pixel HDR loss weighs a small lamp by its few pixels
+// and a clipped photo leaves it near 1, where a mirror ball shows no highlight; this loss asks
+// for each highlight the photo saw to be at least min(Y_gt, 2), whatever its size.
+torch::Tensor highlightLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear,
+                            const torch::Tensor& observed);
+
 // Diffuse-irradiance loss: the cosine-weighted integrals of linear radiance over the six axis
 // normals (the irradiance a diffuse surface facing +-x, +-y, +-z receives, as the metric of
 // docs/metrics.md), their mean relative error |E_pred - E_gt| / E_gt (E_gt floored at 1e-3 of

@@ -56,6 +56,8 @@ void TrainOptions::validate() const {
         throw InputError("--irradiance-focus must be in [0, 4]");
     if (!(envmapSquaredWeight >= 0 && envmapSquaredWeight <= 100))
         throw InputError("--envmap-mse-weight must be in [0, 100]");
+    if (!(highlightWeight >= 0 && highlightWeight <= 100))
+        throw InputError("--highlight-weight must be in [0, 100]");
     if (!(viewHdrWeight >= 0 && viewHdrWeight <= 100))
         throw InputError("--view-hdr-weight must be in [0, 100]");
     if (!(pruneAlpha >= 0 && pruneAlpha < 1)) throw InputError("--prune-alpha must be in [0, 1)");
@@ -324,19 +326,31 @@ std::string formatDuration(double seconds) {
 struct PreparedExample {
     PairInputs inputs;
     PinholeCamera target;
-    torch::Tensor targetImage;           // [1, 3, H, W] linear, the held-out view
-    torch::Tensor targetHdr;             // [1, 3, H, W] its unclipped radiance; undefined
-                                         // without tgt.exr
-    torch::Tensor refDepth;              // [1, 1, H, W] metres; undefined without depth.exr
-    std::vector<torch::Tensor> oracle;   // cubes; empty without oracle.vdb
-    std::vector<torch::Tensor> envmaps;  // [1, 3, h, w] linear HDR at the training size
+    torch::Tensor targetImage;                  // [1, 3, H, W] linear, the held-out view
+    torch::Tensor targetHdr;                    // [1, 3, H, W] its unclipped radiance; undefined
+                                                // without tgt.exr
+    torch::Tensor refDepth;                     // [1, 1, H, W] metres; undefined without depth.exr
+    std::vector<torch::Tensor> oracle;          // cubes; empty without oracle.vdb
+    std::vector<torch::Tensor> envmaps;         // [1, 3, h, w] linear HDR at the training size
+    std::vector<torch::Tensor> envmapObserved;  // [1, 1, h, w] 0/1; only for the highlight loss
     std::vector<Vec3d> envmapPositions;
 };
+
+// An observed-pixel mask at the training envmap size: the share of each new pixel's area
+// that was observed, at least half of it counting as observed.
+torch::Tensor maskAtSize(const std::vector<std::uint8_t>& mask, int width, int height, int newWidth,
+                         int newHeight) {
+    ImageRGB image(width, height);
+    for (std::size_t p = 0; p < mask.size(); ++p)
+        std::fill_n(&image.pixels[3 * p], 3, mask[p] ? 1.f : 0.f);
+    return (imageToTensor(resizeImage(image, newWidth, newHeight)).narrow(1, 0, 1) >= 0.5f)
+        .to(torch::kFloat32);
+}
 
 PreparedExample prepareExample(const std::string& directory, const NetConfig& config,
                                const TrainOptions& o, Random& rng, const torch::Device& device,
                                bool direct) {
-    TrainingExample ex = loadExample(directory);
+    TrainingExample ex = loadExample(directory, /*withMasks=*/o.highlightWeight > 0);
     Augmentation a;  // the identity unless augmenting
     if (o.augment) a = drawAugmentation(rng);
     // Expose the unclipped renders where the example has them, then clip, as a camera does
@@ -366,6 +380,11 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
             imageToTensor(resizeImage(ex.envmaps[e], config.trainEnvWidth, config.trainEnvHeight))
                 .to(device));
         p.envmapPositions.push_back(ex.cameras.envmaps[e].position);
+        if (e < ex.masks.size())
+            p.envmapObserved.push_back(maskAtSize(ex.masks[e], ex.envmaps[e].width,
+                                                  ex.envmaps[e].height, config.trainEnvWidth,
+                                                  config.trainEnvHeight)
+                                           .to(device));
     }
     if (!direct) return p;
     const fs::path dir(directory);
@@ -540,6 +559,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.irradianceFocus > 0)
         progress << " (gradient focused on bright pixels, power " << o.irradianceFocus << ")";
     if (o.envmapSquaredWeight > 0) progress << ", " << o.envmapSquaredWeight << " x squared sRGB";
+    if (o.highlightWeight > 0)
+        progress << ", " << o.highlightWeight << " x highlights (observed lamps and windows)";
     if (o.viewHdrWeight > 0)
         progress << "; views also " << o.viewHdrWeight << " x HDR (unclipped tgt.exr)";
     if (o.pruneAlpha > 0)
@@ -627,6 +648,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                               hdrImageLoss(rendered, ex.envmaps[k]) +
                               o.irradianceWeight *
                                   focusedIrradianceLoss(rendered, ex.envmaps[k], o.irradianceFocus);
+                    if (o.highlightWeight > 0 && k < ex.envmapObserved.size())
+                        envLoss =
+                            envLoss + o.highlightWeight * highlightLoss(rendered, ex.envmaps[k],
+                                                                        ex.envmapObserved[k]);
                     if (o.envmapSquaredWeight > 0)
                         envLoss = envLoss +
                                   o.envmapSquaredWeight * squaredImageLoss(rendered, ex.envmaps[k]);

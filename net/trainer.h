@@ -79,6 +79,10 @@ struct TrainOptions {
     // own quantity) beside the L1 losses; 0: off. Its values are ~0.03 where L1's are ~0.15,
     // so a weight of a few units is needed to move the L1's median towards the mean.
     double envmapSquaredWeight = 0.0;
+    // Weight of the highlight loss (net/losses.h highlightLoss) on the envmaps: the lamps and
+    // windows the photo saw at least min(Y, 2) bright, nothing else above 1, as a mirror ball
+    // shows them. Needs the examples' observed masks (env_K_mask.png). 0: off.
+    double highlightWeight = 0.0;
     // Weight of the HDR view loss (net/losses.h hdrImageLoss: L1 of ln(1 + radiance)) of the
     // MPI's rendering of the held-out view against that view's unclipped render (tgt.exr,
     // where the example has it). The clamped image loss cannot see a window brighter than 1;

@@ -59,6 +59,31 @@ TEST(Losses, HdrImageLossIsZeroOnIdenticalInputsAndSeesBrightness) {
     EXPECT_NEAR(hdrImageLoss(dim, a).item<double>(), std::log(51.0) - std::log(2.0), 1e-5);
 }
 
+TEST(Losses, HighlightLossAsksForTheObservedLampsAndNoOthers) {
+    // Two pixels: a lamp of 30 the photo saw, and a wall of 0.5.
+    auto truth = torch::full({1, 3, 1, 2}, 0.5);
+    truth.narrow(3, 0, 1).fill_(30.0);
+    const auto seen = torch::ones({1, 1, 1, 2});
+    EXPECT_EQ(highlightLoss(truth, truth, seen).item<double>(), 0.0);
+    // The lamp at 2 is enough (min(30, 2)); at 1 it is short by ln 3 - ln 2.
+    auto dim = truth.clone();
+    dim.narrow(3, 0, 1).fill_(2.0);
+    EXPECT_NEAR(highlightLoss(dim, truth, seen).item<double>(), 0.0, 1e-6);
+    dim.narrow(3, 0, 1).fill_(1.0);
+    EXPECT_NEAR(highlightLoss(dim, truth, seen).item<double>(), std::log(3.0) - std::log(2.0),
+                1e-5);
+    // Not asked for where the photo did not see it.
+    const auto unseen = torch::tensor({0.f, 1.f}).view({1, 1, 1, 2});
+    EXPECT_NEAR(highlightLoss(dim, truth, unseen).item<double>(), 0.0, 1e-6);
+    // A wall shown as a highlight (luminance 3) costs ln 4 - ln 2; up to 1 it costs nothing.
+    auto glare = truth.clone();
+    glare.narrow(3, 1, 1).fill_(3.0);
+    EXPECT_NEAR(highlightLoss(glare, truth, seen).item<double>(), std::log(4.0) - std::log(2.0),
+                1e-5);
+    glare.narrow(3, 1, 1).fill_(1.0);
+    EXPECT_NEAR(highlightLoss(glare, truth, seen).item<double>(), 0.0, 1e-6);
+}
+
 TEST(Losses, LogRadianceEncodingTellsALampFromAWhiteWall) {
     const auto radiance = torch::tensor({0.0, 1.0, 100.0, 1000.0, -1.0});
     const auto seen = logRadianceEncode(radiance);

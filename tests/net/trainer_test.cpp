@@ -244,6 +244,21 @@ TEST_F(TrainerTest, TheEnvmapSquaredErrorWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, TheHighlightWeightSteersTraining) {
+    // The tiny set's rooms have lamps in their envmaps and masks beside them: off and strong
+    // give different weights, and the log says the term is on.
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_highlight", 0.0, 20.0,
+                  [](TrainOptions& o, double w) { o.highlightWeight = w; }, log),
+              1e-6)
+        << "the highlight weight changed nothing";
+    EXPECT_NE(log.str().find("20 x highlights"), std::string::npos) << log.str();
+    TrainOptions negative = options("lighthouse_trainer_highlight_negative");
+    negative.highlightWeight = -1.0;
+    EXPECT_THROW(negative.validate(), InputError);
+}
+
 TEST_F(TrainerTest, DirectSupervisionUsesTheOracleAndTheDepth) {
     std::ostringstream log;
     TrainOptions o = options("lighthouse_trainer_direct");
