@@ -121,12 +121,6 @@ torch::Tensor luminanceOf(const torch::Tensor& linear) {  // [N, 3, H, W] -> [N,
            kLumaB * linear.narrow(1, 2, 1);
 }
 
-// Mean of `values` over the pixels where `where` is true; 0 (with a gradient) where none is.
-torch::Tensor maskedMean(const torch::Tensor& values, const torch::Tensor& where) {
-    const auto w = where.to(values.dtype());
-    return (values * w).sum() / w.sum().clamp_min(1.0);
-}
-
 }  // namespace
 
 torch::Tensor highlightLoss(const torch::Tensor& predicted, const torch::Tensor& target,
@@ -137,8 +131,11 @@ torch::Tensor highlightLoss(const torch::Tensor& predicted, const torch::Tensor&
     const auto show =
         torch::relu(torch::log1p(yTrue.clamp_max(2.0 * kLampLuminance)) - torch::log1p(yPred));
     const auto hide = torch::relu(torch::log1p(yPred) - std::log1p(kLampLuminance));
-    return maskedMean(show, trueHighlight & (observed != 0)) +
-           maskedMean(hide, trueHighlight.logical_not());
+    // Every pixel pays for its own term: a lamp pixel left dim and a wall pixel shown as a
+    // highlight cost alike, so the light a lamp spills onto its neighbours is charged too.
+    return (show * (trueHighlight & (observed != 0)).to(show.dtype()) +
+            hide * trueHighlight.logical_not().to(hide.dtype()))
+        .mean();
 }
 
 torch::Tensor logRadianceEncode(const torch::Tensor& linear) {

@@ -33,12 +33,14 @@ torch::Tensor logRadianceEncode(const torch::Tensor& linear);
 // Highlight loss: asks an envmap to show the lamps and windows that a mirror ball would show
 // and the photo saw (image/highlights.h: luminance Y above kLampLuminance = 1), and no others.
 // Envmaps [N, 3, H, W] linear; `observed` [N, 1, H, W], nonzero where the reference photo sees
-// the pixel's first surface. The sum of two means:
-//   over observed true highlights: relu(ln(1 + min(Y_gt, 2)) - ln(1 + Y_pred)),
-//   over pixels whose truth is not a highlight: relu(ln(1 + Y_pred) - ln 2);
-// a set without pixels adds 0. The per-pixel HDR loss weighs a small lamp by its few pixels
-// and a clipped photo leaves it near 1, where a mirror ball shows no highlight; this loss asks
-// for each highlight the photo saw to be at least min(Y_gt, 2), whatever its size.
+// the pixel's first surface. The mean over all pixels of
+//   at observed true highlights: relu(ln(1 + min(Y_gt, 2)) - ln(1 + Y_pred)),
+//   at pixels whose truth is not a highlight: relu(ln(1 + Y_pred) - ln 2),
+//   elsewhere (true highlights the photo did not see): 0.
+// Each pixel pays for its own term, so a lamp pixel left dim and a wall pixel shown as a
+// highlight cost alike. (Taking each term's mean over its own pixels instead made a false
+// highlight cost about a hundredth of a missed lamp pixel: the model then showed more lamps
+// and as many false ones; models/README.md, "the highlight loss".)
 torch::Tensor highlightLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear,
                             const torch::Tensor& observed);
 

@@ -65,12 +65,12 @@ TEST(Losses, HighlightLossAsksForTheObservedLampsAndNoOthers) {
     truth.narrow(3, 0, 1).fill_(30.0);
     const auto seen = torch::ones({1, 1, 1, 2});
     EXPECT_EQ(highlightLoss(truth, truth, seen).item<double>(), 0.0);
-    // The lamp at 2 is enough (min(30, 2)); at 1 it is short by ln 3 - ln 2.
+    // The lamp at 2 is enough (min(30, 2)); at 1 it is short by ln 3 - ln 2, over 2 pixels.
     auto dim = truth.clone();
     dim.narrow(3, 0, 1).fill_(2.0);
     EXPECT_NEAR(highlightLoss(dim, truth, seen).item<double>(), 0.0, 1e-6);
     dim.narrow(3, 0, 1).fill_(1.0);
-    EXPECT_NEAR(highlightLoss(dim, truth, seen).item<double>(), std::log(3.0) - std::log(2.0),
+    EXPECT_NEAR(highlightLoss(dim, truth, seen).item<double>(), (std::log(3.0) - std::log(2.0)) / 2,
                 1e-5);
     // Not asked for where the photo did not see it.
     const auto unseen = torch::tensor({0.f, 1.f}).view({1, 1, 1, 2});
@@ -78,8 +78,8 @@ TEST(Losses, HighlightLossAsksForTheObservedLampsAndNoOthers) {
     // A wall shown as a highlight (luminance 3) costs ln 4 - ln 2; up to 1 it costs nothing.
     auto glare = truth.clone();
     glare.narrow(3, 1, 1).fill_(3.0);
-    EXPECT_NEAR(highlightLoss(glare, truth, seen).item<double>(), std::log(4.0) - std::log(2.0),
-                1e-5);
+    EXPECT_NEAR(highlightLoss(glare, truth, seen).item<double>(),
+                (std::log(4.0) - std::log(2.0)) / 2, 1e-5);
     glare.narrow(3, 1, 1).fill_(1.0);
     EXPECT_NEAR(highlightLoss(glare, truth, seen).item<double>(), 0.0, 1e-6);
 }
