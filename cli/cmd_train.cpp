@@ -85,7 +85,8 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--highlight-weight", o->highlightWeight,
                     "Weight of the highlight loss on envmaps: the lamps and windows the photo saw "
                     "at least twice as bright as white (or as bright as they are), nothing else "
-                    "above white, as a mirror ball shows them; needs env_K_mask.png; 0: off")
+                    "above white, as a mirror ball shows them; needs each envmap's observed mask "
+                    "(env_K_mask.png, or env_K_pos.exr and the reference depth); 0: off")
         ->capture_default_str();
     cmd->add_option("--view-hdr-weight", o->viewHdrWeight,
                     "Weight of the HDR loss (log radiance) of the MPI's held-out view against its "

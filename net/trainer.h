@@ -81,7 +81,7 @@ struct TrainOptions {
     double envmapSquaredWeight = 0.0;
     // Weight of the highlight loss (net/losses.h highlightLoss) on the envmaps: the lamps and
     // windows the photo saw at least min(Y, 2) bright, nothing else above 1, as a mirror ball
-    // shows them. Needs the examples' observed masks (env_K_mask.png). 0: off.
+    // shows them. Needs the examples' observed masks (net/training_data.h loadExample). 0: off.
     double highlightWeight = 0.0;
     // Weight of the HDR view loss (net/losses.h hdrImageLoss: L1 of ln(1 + radiance)) of the
     // MPI's rendering of the held-out view against that view's unclipped render (tgt.exr,
