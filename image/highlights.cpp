@@ -20,18 +20,25 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 std::vector<std::uint8_t> highlightPixels(const ImageRGB& envmap) {
     std::vector<std::uint8_t> bright(std::size_t(envmap.width) * envmap.height);
     for (std::size_t p = 0; p < bright.size(); ++p)
-        bright[p] = rec709Luminance(&envmap.pixels[3 * p]) > kLampLuminance;
+        bright[p] = isLampOrWindow(&envmap.pixels[3 * p]);
     return bright;
+}
+
+// The unit direction of every pixel of a width x height envmap, row-major.
+std::vector<Vec3d> pixelDirections(int width, int height) {
+    std::vector<Vec3d> directions(std::size_t(width) * height);
+    for (int r = 0; r < height; ++r)
+        for (int c = 0; c < width; ++c)
+            directions[std::size_t(r) * width + c] = envmapPixelDirection(r, c, width, height);
+    return directions;
 }
 
 // Every pixel within `radius` (radians) of a marked pixel of `marks`: for each marked pixel,
 // the rows a radius away at most, and in them the pixels whose direction is that close.
-std::vector<std::uint8_t> dilateOnSphere(const std::vector<std::uint8_t>& marks, int width,
+// `directions`: pixelDirections(width, height).
+std::vector<std::uint8_t> dilateOnSphere(const std::vector<std::uint8_t>& marks,
+                                         const std::vector<Vec3d>& directions, int width,
                                          int height, double radius) {
-    std::vector<Vec3d> directions(marks.size());
-    for (int r = 0; r < height; ++r)
-        for (int c = 0; c < width; ++c)
-            directions[std::size_t(r) * width + c] = envmapPixelDirection(r, c, width, height);
     const double cosRadius = std::cos(radius);
     // Pixel centres' polar angles differ by pi / H per row.
     const int rowReach = int(std::ceil(radius / (M_PI / height)));
@@ -80,8 +87,9 @@ HighlightMatch matchHighlights(const ImageRGB& pred, const ImageRGB& gt, double 
     const int w = gt.width, h = gt.height;
     const std::vector<std::uint8_t> predBright = highlightPixels(pred),
                                     gtBright = highlightPixels(gt);
-    return {coveredShare(gtBright, dilateOnSphere(predBright, w, h, radius), w, h),
-            coveredShare(predBright, dilateOnSphere(gtBright, w, h, radius), w, h)};
+    const std::vector<Vec3d> directions = pixelDirections(w, h);
+    return {coveredShare(gtBright, dilateOnSphere(predBright, directions, w, h, radius), w, h),
+            coveredShare(predBright, dilateOnSphere(gtBright, directions, w, h, radius), w, h)};
 }
 
 }  // namespace lh

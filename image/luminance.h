@@ -16,4 +16,7 @@ inline double rec709Luminance(const float* rgb) {
     return kLumaR * rgb[0] + kLumaG * rgb[1] + kLumaB * rgb[2];
 }
 
+// Whether a linear RGB pixel is a lamp or a window: its luminance is above kLampLuminance.
+inline bool isLampOrWindow(const float* rgb) { return rec709Luminance(rgb) > kLampLuminance; }
+
 }  // namespace lh

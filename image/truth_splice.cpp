@@ -43,10 +43,10 @@ ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPar
                 take = observed[i] == 0;
                 break;
             case TruthPart::LampsAndWindows:
-                take = rec709Luminance(t) > kLampLuminance;
+                take = isLampOrWindow(t);
                 break;
             case TruthPart::ObservedLampsAndWindows:
-                take = observed[i] != 0 && rec709Luminance(t) > kLampLuminance;
+                take = observed[i] != 0 && isLampOrWindow(t);
                 break;
         }
         if (take) std::copy(t, t + 3, &out.pixels[3 * i]);
