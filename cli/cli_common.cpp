@@ -1,5 +1,6 @@
 #include "cli/cli_common.h"
 
+#include "core/atomic_file.h"
 #include "core/errors.h"
 #include "vdb/volume_io.h"
 
@@ -90,6 +91,11 @@ std::string numberedPath(const std::string& path, int index) {
 
 std::string withExtension(const std::string& path, const std::string& extension) {
     return std::filesystem::path(path).replace_extension(extension).string();
+}
+
+void requireVdbOutput(const std::string& path, const std::string& what) {
+    if (fileExtension(path) != ".vdb")
+        throw InputError("output '" + path + "' must end in .vdb (" + what + ")");
 }
 
 void warnOfHalfClamping(const VolumeSaveReport& saved, const std::string& hint) {

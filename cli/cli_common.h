@@ -28,5 +28,10 @@ void warnOfHalfClamping(const VolumeSaveReport& saved, const std::string& hint);
 std::string numberedPath(const std::string& path, int index);
 // Replaces the extension: ("a/b.exr", ".png") -> "a/b.png".
 std::string withExtension(const std::string& path, const std::string& extension);
+// Throws InputError "output 'PATH' must end in .vdb (WHAT)" unless PATH's extension is .vdb in
+// any case (OpenVDB reads the file whatever its name, but the tools that list and open .vdb
+// files go by the extension). Commands call it before any work. `what` says what the command
+// writes, e.g. "the lighting volume".
+void requireVdbOutput(const std::string& path, const std::string& what);
 
 }  // namespace lh::cli

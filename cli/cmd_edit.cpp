@@ -82,9 +82,7 @@ void splitEmitter(const std::string& text, const std::string& what, std::string&
 }
 
 void runEdit(const EditOptions& o) {
-    if (fileExtension(o.output) != ".vdb")
-        throw InputError("output '" + o.output +
-                         "' must end in .vdb (edit writes a lighting volume)");
+    requireVdbOutput(o.output, "the edited lighting volume");
     if (o.clampDensity && !(*o.clampDensity > 0))
         throw InputError("--clamp-density must be a positive density per scene unit, got " +
                          std::to_string(*o.clampDensity));

@@ -23,6 +23,7 @@ struct ImportOptions {
 
 void runImport(const ImportOptions& o) {
     const Dcc dcc = parseDcc(o.source, "--from");
+    requireVdbOutput(o.output, "the imported lighting volume");
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the export directory"}});
     DccImportReport report;
     const LightingVolume volume = importFromDcc(

@@ -25,6 +25,7 @@ struct MakeExampleOptions {
 };
 
 void makeExample(const MakeExampleOptions& o) {
+    requireVdbOutput(o.output, "the example lighting volume");
     VolumeLayout::fromFarDepth(7.0, o.levels, o.resolution);  // validates before any work
     // The cameras file is written to its temporary first, so that a bad cameras path fails
     // before the volume exists; both appear only if both succeed.

@@ -46,6 +46,7 @@ void runOracle(const OracleCommandOptions& o) {
         {(dir / dataset::kScene).string(), "the example's scene.json"},
         {(dir / dataset::kCameras).string(), "the example's cameras.json"},
         {o.hdriDir, "--hdri-dir"}};
+    requireVdbOutput(o.output, "the oracle lighting volume");
     requireOutputIsNotAnInput(o.output, "-o", inputs);
     requirePositiveExposure(o.exposure);
     synth::BakeOptions bake;

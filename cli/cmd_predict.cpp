@@ -191,8 +191,7 @@ void runPredict(const PredictOptions& o, int threads) {
         throw InputError(
             "predict needs --ref, --src and --cameras (one pair), or --pairs LIST or --examples "
             "DIR");
-    if (fileExtension(o.output) != ".vdb")
-        throw InputError("output '" + o.output + "' must end in .vdb");
+    requireVdbOutput(o.output, "the MPI and the lighting volume");
     requireWritableOutput(o.output);  // before the network's seconds, not after them
     const auto start = std::chrono::steady_clock::now();
     net::StereoPair pair{readImage(o.ref), readImage(o.src), loadCamerasFile(o.cameras)};

@@ -29,8 +29,7 @@ struct ShellOptions {
 };
 
 void runShell(const ShellOptions& o) {
-    if (o.output.size() < 5 || o.output.substr(o.output.size() - 4) != ".vdb")
-        throw InputError("output must be a .vdb file, got '" + o.output + "'");
+    requireVdbOutput(o.output, "the shell volume");
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the input volume"}});
     validateMantissaBits(o.mantissaBits, o.half);
     const std::optional<Vec3d> centre =

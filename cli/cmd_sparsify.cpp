@@ -35,8 +35,7 @@ struct SparsifyOptions {
 };
 
 void runSparsify(const SparsifyOptions& o) {
-    if (o.output.size() < 5 || o.output.substr(o.output.size() - 4) != ".vdb")
-        throw InputError("output must be a .vdb file, got '" + o.output + "'");
+    requireVdbOutput(o.output, "the sparsified volume");
     requireOutputIsNotAnInput(o.output, "-o", {{o.input, "the input volume"}});
     if (o.tau && !(*o.tau > 0))
         throw InputError(

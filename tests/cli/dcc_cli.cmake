@@ -36,6 +36,10 @@ lighthouse_cli_error(import_a_vdb_file
   EXPECT "example[.]vdb.*not an export directory"
   ABSENT imported_file.vdb
   ARGS import example.vdb --from houdini -o imported_file.vdb)
+lighthouse_cli_error(import_output_not_vdb
+  EXPECT "output 'imported[.]exr' must end in [.]vdb"
+  ABSENT imported.exr
+  ARGS import adir --from blender -o imported.exr)
 lighthouse_cli_error(import_unknown_program
   EXPECT "--from: expected 'blender' or 'houdini'"
   ABSENT imported_maya.vdb

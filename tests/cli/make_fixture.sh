@@ -12,6 +12,7 @@
 #                               no 'ref', not JSON)
 #   points.txt, badpoints.txt, emptypoints.txt
 #   adir/                       a directory
+#   adir.vdb/                   a directory named like a volume
 set -u
 
 if [ $# -ne 2 ]; then
@@ -24,7 +25,7 @@ work=$2
 fail() { echo "make_fixture: $*" >&2; exit 1; }
 
 rm -rf -- "$work" || fail "cannot clear $work"
-mkdir -p -- "$work/adir" || fail "cannot create $work"
+mkdir -p -- "$work/adir" "$work/adir.vdb" || fail "cannot create $work"
 cd -- "$work" || fail "cannot enter $work"
 
 "$lh" make-example --levels 3 --res 16 -o example.vdb --cameras cameras.json </dev/null ||

@@ -5,7 +5,7 @@ lighthouse_cli_error(shell_random_bytes
   ABSENT shell_random.vdb
   ARGS shell random.vdb -o shell_random.vdb)
 lighthouse_cli_error(shell_output_not_vdb
-  EXPECT "output must be a [.]vdb file"
+  EXPECT "output 'shell[.]exr' must end in [.]vdb [(]the shell volume[)]"
   ABSENT shell.exr
   ARGS shell example.vdb -o shell.exr)
 lighthouse_cli_error(shell_centre_outside_the_volume

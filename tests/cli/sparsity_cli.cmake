@@ -9,7 +9,7 @@ lighthouse_cli_error(sparsify_text_file
   ABSENT sparse_text.vdb
   ARGS sparsify text.vdb -o sparse_text.vdb --tau 1e-3)
 lighthouse_cli_error(sparsify_output_not_vdb
-  EXPECT "output must be a [.]vdb file"
+  EXPECT "output 'sparse[.]exr' must end in [.]vdb [(]the sparsified volume[)]"
   ABSENT sparse.exr
   ARGS sparsify example.vdb -o sparse.exr)
 lighthouse_cli_error(sparsify_bad_tau
