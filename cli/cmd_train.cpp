@@ -22,6 +22,12 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "a display) over more than this fraction of it, before the held-out split; "
                     "0.1: no more than the path-traced evaluation rooms clip (1: keep all)")
         ->capture_default_str();
+    cmd->add_option("--max-photo-clipped", o->maxPhotoClipped,
+                    "Lower each example's exposure until at most this fraction of its reference "
+                    "photo clips, as a camera metering for its highlights does, so that what clips "
+                    "is mostly lamps and windows (uses the views' unclipped EXRs; 1: the exposure "
+                    "as drawn)")
+        ->capture_default_str();
     cmd->add_option(
            "--config", o->config,
            "standard (5 x 64^3 from 192x144, 32 planes, HDR), wide (standard with completion "

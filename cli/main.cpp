@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
     lh::cli::addSparsifyCommand(app);
     lh::cli::addShellCommand(app);
     lh::cli::addBenchSparsityCommand(app);
+    lh::cli::addPhotoClippingCommand(app);
 
     std::unique_ptr<tbb::global_control> threadLimit;
     app.parse_complete_callback([&] {

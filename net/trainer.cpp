@@ -6,6 +6,7 @@
 #include "core/random.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
+#include "image/photo_clipping.h"
 #include "image/resample.h"
 #include "net/augment.h"
 #include "net/curve_plot.h"
@@ -47,6 +48,8 @@ void TrainOptions::validate() const {
     if (stopAfter < 0) throw InputError("--stop-after must be at least 0");
     if (!(maxClipped >= 0.0 && maxClipped <= 1.0))
         throw InputError("--max-clipped must be a fraction in [0, 1]");
+    if (!(maxPhotoClipped >= 0.0 && maxPhotoClipped <= 1.0))
+        throw InputError("--max-photo-clipped must be a fraction in [0, 1]");
     if (batch < 1 || batch > 4096) throw InputError("--batch must be in [1, 4096]");
     if (!(averageDecay >= 0 && averageDecay < 1))
         throw InputError("--average-decay must be in [0, 1)");
@@ -356,6 +359,10 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
     // Expose the unclipped renders where the example has them, then clip, as a camera does
     // (net/training_data.h); without augmentation that gives the PNGs' values again.
     const bool unclipped = useUnclippedViews(ex);
+    // Metering for the highlights needs the radiance above 1, which only the EXRs keep.
+    if (unclipped && o.maxPhotoClipped < 1.0)
+        a.exposure =
+            std::min(a.exposure, exposureClippingAtMost(ex.ref, a.gain, o.maxPhotoClipped));
     ImageRGB targetHdr;
     if (unclipped) {
         targetHdr = ex.tgt;
@@ -366,8 +373,7 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
         augmentPhoto(ex.src, a, rng);
         augmentPhoto(ex.tgt, a, rng);
     }
-    if (o.augment)
-        for (auto& e : ex.envmaps) augmentRadiance(e, a);
+    for (auto& e : ex.envmaps) augmentRadiance(e, a);  // the identity unless augmenting or metering
     PreparedExample p;
     p.inputs = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
                               *ex.cameras.far, config, device);
@@ -563,6 +569,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         progress << ", " << o.highlightWeight << " x highlights (observed lamps and windows)";
     if (o.viewHdrWeight > 0)
         progress << "; views also " << o.viewHdrWeight << " x HDR (unclipped tgt.exr)";
+    if (o.maxPhotoClipped < 1.0)
+        progress << "; photos exposed to clip on at most " << o.maxPhotoClipped
+                 << " of the reference view";
     if (o.pruneAlpha > 0)
         progress << "; envmaps rendered with voxels of alpha below " << o.pruneAlpha
                  << " pruned (straight-through)";

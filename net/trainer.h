@@ -32,6 +32,10 @@ struct TrainOptions {
     // Leave out scenes of `data` with an envmap clipped (channel mean above 1) on more than this
     // fraction of its pixels, before the held-out split (net/exposure_filter.h); 1: keep all.
     double maxClipped = 1.0;
+    // Lower each example's exposure until at most this fraction of its reference photo's pixels
+    // clip, as a camera metering for its highlights does (needs the views' unclipped EXRs); 1:
+    // the exposure as drawn.
+    double maxPhotoClipped = 1.0;
     std::string config = "standard";
     std::string out = "model.pt";  // model; the log is OUT.csv/.png
     std::string checkpoint;        // resumable state; empty: OUT.checkpoint

@@ -57,3 +57,23 @@ lighthouse_cli_error(oracle_directory_without_scene
   EXPECT "cannot open scene file.*adir/scene[.]json"
   ABSENT oracle_bad2.vdb
   ARGS oracle adir -o oracle_bad2.vdb)
+
+# `lighthouse photo-clipping`: the clipped share of a data set's reference photos, as they are
+# and metered for their highlights; folders without ref.exr are one clear error.
+lighthouse_cli_ok(photo_clipping_tiny
+  STDOUT "syn_tiny: 2 reference photos. [0-9.]+% of their pixels clip [(]per photo: median [0-9.]+%, largest [0-9.]+%[)]"
+  ARGS photo-clipping syn_tiny)
+lighthouse_cli_ok(photo_clipping_metered
+  STDOUT "syn_tiny/000000: 1 reference photo, metered for their highlights. [0-9.]+% of their pixels clip"
+  ARGS photo-clipping syn_tiny/000000 --max-photo-clipped 0.02)
+set_tests_properties(cli.ok.photo_clipping_tiny cli.ok.photo_clipping_metered PROPERTIES
+  FIXTURES_REQUIRED "lighthouse_cli;lighthouse_synth_tiny")
+lighthouse_cli_error(photo_clipping_no_reference_views
+  EXPECT "no ref[.]exr in 'adir'"
+  ARGS photo-clipping adir)
+lighthouse_cli_error(photo_clipping_missing_directory
+  EXPECT "'no_such_data' is not a directory"
+  ARGS photo-clipping no_such_data)
+lighthouse_cli_error(photo_clipping_fraction_above_one
+  PARSE_ERROR EXPECT "--max-photo-clipped"
+  ARGS photo-clipping adir --max-photo-clipped 2)

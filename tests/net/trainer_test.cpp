@@ -259,6 +259,23 @@ TEST_F(TrainerTest, TheHighlightWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, MeteringForHighlightsChangesWhatTrainingSees) {
+    // The tiny set's photos show lamps: letting none of the reference photo clip darkens the
+    // examples (photos and targets alike), which changes the weights, and the log says so.
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_metering", 1.0, 0.0,
+                  [](TrainOptions& o, double f) { o.maxPhotoClipped = f; }, log),
+              1e-6)
+        << "metering for the highlights changed nothing";
+    EXPECT_NE(log.str().find("photos exposed to clip on at most 0 of the reference view"),
+              std::string::npos)
+        << log.str();
+    TrainOptions above = options("lighthouse_trainer_metering_above_one");
+    above.maxPhotoClipped = 1.5;
+    EXPECT_THROW(above.validate(), InputError);
+}
+
 TEST_F(TrainerTest, DirectSupervisionUsesTheOracleAndTheDepth) {
     std::ostringstream log;
     TrainOptions o = options("lighthouse_trainer_direct");
