@@ -45,7 +45,7 @@ std::vector<fs::path> referenceViews(const std::string& dir) {
     return out;
 }
 
-// The value below which `fraction` of the sorted `values` lie.
+// The value below which `fraction` of `sorted` (ascending, not empty) lies.
 double quantile(const std::vector<double>& sorted, double fraction) {
     return sorted[std::size_t(fraction * double(sorted.size() - 1) + 0.5)];
 }

@@ -24,9 +24,9 @@ void addTrainCommand(CLI::App& app, const int& threads) {
         ->capture_default_str();
     cmd->add_option("--max-photo-clipped", o->maxPhotoClipped,
                     "Lower each example's exposure until at most this fraction of its reference "
-                    "photo clips, as a camera metering for its highlights does, so that what clips "
-                    "is mostly lamps and windows (uses the views' unclipped EXRs; 1: the exposure "
-                    "as drawn)")
+                    "photo clips, as a camera metering for its highlights does (uses the views' "
+                    "unclipped EXRs; `lighthouse photo-clipping` shows what then clips; 1: the "
+                    "exposure as drawn)")
         ->capture_default_str();
     cmd->add_option(
            "--config", o->config,

@@ -12,7 +12,8 @@
 namespace lh {
 
 // True luminance above which a clipped pixel counts as lamp- or window-bright: 8 times the
-// display's white, beyond what a lit wall reaches in a photo metered for its mid-tones.
+// display's white, between the walls that clip just above 1 and the lamps and windows (tens to
+// hundreds).
 constexpr double kLampBrightLuminance = 8.0;
 
 // The largest exposure at which at most `maxFraction` (in [0, 1]) of `linear`'s pixels clip
