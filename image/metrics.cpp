@@ -255,6 +255,13 @@ std::vector<std::uint8_t> loadMask(const std::string& path, int width, int heigh
     return mask;
 }
 
+ImageRGB maskToImage(const std::vector<std::uint8_t>& mask, int width, int height) {
+    ImageRGB image(width, height);
+    for (std::size_t p = 0; p < mask.size(); ++p)
+        std::fill_n(&image.pixels[3 * p], 3, mask[p] ? 1.f : 0.f);
+    return image;
+}
+
 MeanStd meanStd(const std::vector<double>& values) {
     MeanStd result{kNaN, kNaN, 0, 0};
     double sum = 0.0;

@@ -117,6 +117,9 @@ std::string metricColumnsCsvHeader();
 // when any channel is nonzero. Throws FileError if unreadable, InputError unless it is
 // width x height.
 std::vector<std::uint8_t> loadMask(const std::string& path, int width, int height);
+// The converse: a width x height image, white where the mask is nonzero, black elsewhere (what
+// `synth` writes as env_K_mask.png, and what training resizes to its envmap size).
+ImageRGB maskToImage(const std::vector<std::uint8_t>& mask, int width, int height);
 
 // Mean and population standard deviation of one metric over a test set. NaN entries (an
 // envmap without observed pixels) are left out and counted in `nanCount`. An infinite entry

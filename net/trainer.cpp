@@ -343,10 +343,8 @@ struct PreparedExample {
 // that was observed, at least half of it counting as observed.
 torch::Tensor maskAtSize(const std::vector<std::uint8_t>& mask, int width, int height, int newWidth,
                          int newHeight) {
-    ImageRGB image(width, height);
-    for (std::size_t p = 0; p < mask.size(); ++p)
-        std::fill_n(&image.pixels[3 * p], 3, mask[p] ? 1.f : 0.f);
-    return (imageToTensor(resizeImage(image, newWidth, newHeight)).narrow(1, 0, 1) >= 0.5f)
+    return (imageToTensor(resizeImage(maskToImage(mask, width, height), newWidth, newHeight))
+                .narrow(1, 0, 1) >= 0.5f)
         .to(torch::kFloat32);
 }
 

@@ -7,6 +7,7 @@
 #include "image/contact_sheet.h"
 #include "image/image_io.h"
 #include "image/luminance.h"
+#include "image/metrics.h"
 #include "synth/oracle.h"
 #include "synth/scene_generator.h"
 #include "synth/scene_json.h"
@@ -39,13 +40,6 @@ constexpr double kEnvmapClearance = 0.3;             // metres from an envmap po
 struct Rejected : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
-
-ImageRGB maskImage(const std::vector<uint8_t>& mask, int width, int height) {
-    ImageRGB image(width, height);
-    for (std::size_t i = 0; i < mask.size(); ++i)
-        std::fill_n(&image.pixels[i * 3], 3, mask[i] ? 1.f : 0.f);
-    return image;
-}
 
 void scale(ImageRGB& image, double factor) {
     for (float& v : image.pixels) v = float(v * factor);
@@ -175,7 +169,7 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
                                                     o.envHeight, rig.ref, o.supersample);
                 writeImage(env.radiance, file(dataset::envmapExr(k)));
                 writePng(env.radiance, file(dataset::envmapPng(k)));
-                writePng(maskImage(env.observed, o.envWidth, o.envHeight),
+                writePng(maskToImage(env.observed, o.envWidth, o.envHeight),
                          file(dataset::maskPng(stem)));
                 writeImage(env.hitPositions, file(dataset::positionsExr(stem)));
                 cameras.envmaps.push_back(

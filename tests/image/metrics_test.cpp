@@ -172,6 +172,23 @@ TEST(Metrics, LoadMaskReadsNonzeroPixelsAndChecksTheSize) {
     EXPECT_THROW(loadMask(path, 3, 2), FileError);
 }
 
+// What synth writes as env_K_mask.png reads back as the same mask.
+TEST(Metrics, MaskToImageIsWhereObservedAndLoadMaskReadsItBack) {
+    const std::vector<std::uint8_t> mask = {1, 0, 0, 0, 3, 1};
+    const ImageRGB image = maskToImage(mask, 3, 2);
+    ASSERT_EQ(image.width, 3);
+    ASSERT_EQ(image.height, 2);
+    EXPECT_FLOAT_EQ(image.at(0, 0)[2], 1.f);
+    EXPECT_FLOAT_EQ(image.at(1, 0)[0], 0.f);
+    EXPECT_FLOAT_EQ(image.at(1, 1)[1], 1.f) << "any nonzero byte is observed";
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("lh_metrics_mask_image_" + std::to_string(::getpid()) + ".png"))
+                                 .string();
+    writePng(image, path);
+    EXPECT_EQ(loadMask(path, 3, 2), (std::vector<std::uint8_t>{1, 0, 0, 0, 1, 1}));
+    std::filesystem::remove(path);
+}
+
 TEST(Metrics, MeanStdLeavesOutNaN) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const MeanStd s = meanStd({1.0, nan, 2.0, 3.0});
