@@ -70,11 +70,13 @@ std::string formatMetric(double value) {
     return formatNumber("%.2f", value);
 }
 
-// "mean ± std", with the number of envmaps when some were left out (NaN entries).
+// "mean ± std", with "(k of N)" when only k of the N envmaps have a value (NaN entries left
+// out), as eval's table writes it.
 std::string formatMeanStd(const MeanStd& s, int total) {
     std::string text = formatMetric(s.mean);
     if (std::isfinite(s.mean)) text += " ± " + formatMetric(s.std);
-    if (s.count != total) text += " (n=" + std::to_string(s.count) + ")";
+    if (s.count != total)
+        text += " (" + std::to_string(s.count) + " of " + std::to_string(total) + ")";
     return text;
 }
 

@@ -116,7 +116,7 @@ ok --stdout "^3 envmaps, 1 with an observed mask" \
    --stdout "^observed content +$num ± 0[.]00 +$num ± 0[.]00 +$num ± 0[.]00 +- +-$" \
    --stdout "^unobserved content +$num ± 0[.]00 +- +- +- +-$" \
    --stdout "^display bias over unobserved content: [+-]0[.][0-9]{4} " \
-   --stdout "$highlights ($num ± $num( [(]n=[12][)])?|none), precision ($num ± $num( [(]n=[12][)])?|none)$" \
+   --stdout "$highlights ($num ± $num( [(][12] of 3[)])?|none), precision ($num ± $num( [(][12] of 3[)])?|none)$" \
    --file rows.csv -- "$lh" compare --batch pred gt --csv rows.csv
 if [ -s rows.csv ]; then
     [ "$(head -n 1 rows.csv)" = "envmap,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio,psnr_unobserved_db,srgb_bias_unobserved,highlight_recall,highlight_precision" ] ||
@@ -147,6 +147,11 @@ mkdir -p many/gt many/pred
 for k in $(seq 0 24); do cp a_000.exr many/gt/env_$k.exr; cp a_001.exr many/pred/env_$k.exr; done
 "$lh" compare --batch many/pred many/gt >/dev/null 2>progress.txt || fail "batch of 25 failed"
 [ "$(tail -n 1 progress.txt)" = "compared 25/25 envmaps" ] || fail "progress: $(cat progress.txt)"
+
+# A prediction without any highlight has no precision: the count says 2 of the 3 envmaps.
+cp scaled_0.001.exr pred/scene_b/env_1.exr
+ok --stdout "$highlights $num ± $num, precision $num ± $num [(]2 of 3[)]$" \
+   -- "$lh" compare --batch pred gt
 
 rm pred/scene_b/env_1.exr
 error --expect "no prediction 'pred/scene_b/env_1[.]exr' for ground truth 'gt/scene_b/env_1[.]exr'" \
