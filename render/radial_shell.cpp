@@ -88,9 +88,11 @@ CubeView lookFromCentre(const RenderVolume& source, const Vec3d& centre,
                               if (!(alpha >= options.minAlpha) || alpha <= 0.0) continue;
                               // Where the ray has gathered half of its alpha: on the medium even
                               // where it is spread over two surfaces (a mean depth would fall
-                              // between them).
+                              // between them). The first march had to end to know alpha; this
+                              // one stops where it crosses that depth, which it records first.
                               MarchOptions half = whole;
                               half.surfaceTransmittance = 1.0 - 0.5 * alpha;
+                              half.minTransmittance = half.surfaceTransmittance;
                               const double depth =
                                   marchRay(source, origin, dir, half).surfaceDistance;
                               if (!std::isfinite(depth)) continue;
