@@ -64,7 +64,8 @@ void warnOnceThatReadsAreNotIsolated(const std::string& why) {
 
 // Starts the probe on `path` with its output discarded (the parent reports); -1 and errno
 // if it cannot be started.
-pid_t spawnProbe(const std::filesystem::path& probe, const std::string& path, std::size_t cap) {
+pid_t spawnProbe(const std::filesystem::path& probe, const std::string& path, std::size_t cap,
+                 GridSelection which) {
     posix_spawn_file_actions_t files;
     posix_spawnattr_t attr;
     ::posix_spawn_file_actions_init(&files);
@@ -81,7 +82,11 @@ pid_t spawnProbe(const std::filesystem::path& probe, const std::string& path, st
     ::posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
     const std::string capText = std::to_string(cap);
     char* argv[] = {const_cast<char*>(probe.c_str()), const_cast<char*>(path.c_str()),
-                    const_cast<char*>(capText.c_str()), nullptr};
+                    const_cast<char*>(capText.c_str()),
+                    which == GridSelection::LightingVolume
+                        ? const_cast<char*>(kProbeLightingVolumeArgument)
+                        : nullptr,
+                    nullptr};
     pid_t pid = -1;
     const int err = ::posix_spawn(&pid, probe.c_str(), &files, &attr, argv, environ);
     ::posix_spawnattr_destroy(&attr);
@@ -117,7 +122,7 @@ bool waitForChild(pid_t pid, double timeoutSeconds, int& status) {
 }  // namespace
 
 ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes,
-                             double timeoutSeconds) {
+                             double timeoutSeconds, GridSelection which) {
     const SiblingExecutable probe = findSiblingExecutable(kVdbProbeName);
     if (!probe.found) {
         warnOnceThatReadsAreNotIsolated(std::string(kVdbProbeName) + " was not found beside " +
@@ -127,7 +132,7 @@ ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes
     const std::optional<std::size_t> bytes = fileSize(path);
     const std::size_t cap = memoryCapBytes ? memoryCapBytes : defaultCap(bytes);
     const double timeout = timeoutSeconds > 0 ? timeoutSeconds : defaultTimeout(bytes);
-    const pid_t pid = spawnProbe(probe.path, path, cap);
+    const pid_t pid = spawnProbe(probe.path, path, cap, which);
     if (pid < 0) {
         warnOnceThatReadsAreNotIsolated("cannot start " + probe.path.string() + " (" +
                                         std::strerror(errno) + ")");

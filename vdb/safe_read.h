@@ -12,13 +12,18 @@
 // runs a parallel_for) waits for ever; that hung `lighthouse import` once.
 #pragma once
 
+#include "vdb/grid_selection.h"
+
 #include <cstddef>
 #include <string>
 
 namespace lh {
 
-// The probe's interface: `lighthouse-vdb-probe FILE MEMORY_CAP_BYTES`. It sets RLIMIT_AS to
-// the cap (or the hard limit, if lower), reads every grid of FILE and exits with one of these.
+// The probe's interface: `lighthouse-vdb-probe FILE MEMORY_CAP_BYTES [lighting-volume]`. It
+// sets RLIMIT_AS to the cap (or the hard limit, if lower), reads every grid of FILE (with
+// `lighting-volume`, every grid but the MPI's: GridSelection::LightingVolume) and exits with
+// one of these.
+constexpr const char* kProbeLightingVolumeArgument = "lighting-volume";
 constexpr const char* kVdbProbeName = "lighthouse-vdb-probe";
 constexpr int kProbeRead = 0;         // every grid read cleanly
 constexpr int kProbeUsage = 2;        // wrong arguments
@@ -44,7 +49,8 @@ enum class ProbeResult {
 // is missing or cannot be started, the file is read in-process with no isolation, after one
 // `warning:` line on stderr per process: a broken installation then still reads good files,
 // as before the probe existed, and says why a corrupt one could crash it.
+// `which`: the grids the caller will read; the probe reads those.
 ProbeResult probeVdbReadable(const std::string& path, std::size_t memoryCapBytes = 0,
-                             double timeoutSeconds = 0);
+                             double timeoutSeconds = 0, GridSelection which = GridSelection::Every);
 
 }  // namespace lh

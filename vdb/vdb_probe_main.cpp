@@ -1,9 +1,11 @@
-// lighthouse-vdb-probe FILE MEMORY_CAP_BYTES
+// lighthouse-vdb-probe FILE MEMORY_CAP_BYTES [lighting-volume]
 //
 // The trial read of an untrusted .vdb file (vdb/safe_read.h), as a program of its own so that
 // the caller starts it with exec and it never inherits the caller's threads. It caps its
-// address space, reads every grid and answers with its exit code; what went wrong is also
-// printed on stderr for a person running it by hand (the caller discards it).
+// address space, reads every grid (or, with `lighting-volume`, the grids the caller will read:
+// vdb/grid_selection.h) and answers with its exit code; what went wrong is also printed on
+// stderr for a person running it by hand (the caller discards it).
+#include "vdb/grid_selection.h"
 #include "vdb/safe_read.h"
 
 #include <openvdb/io/File.h>
@@ -12,6 +14,7 @@
 #include <sys/resource.h>
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <new>
 
@@ -40,10 +43,14 @@ bool capAddressSpace(rlim_t cap) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const rlim_t cap = argc == 3 ? parseCap(argv[2]) : 0;
+    const bool lightingVolumeOnly =
+        argc == 4 && std::strcmp(argv[3], lh::kProbeLightingVolumeArgument) == 0;
+    const rlim_t cap = argc == 3 || lightingVolumeOnly ? parseCap(argv[2]) : 0;
     if (cap == 0) {
-        std::cerr << "usage: " << lh::kVdbProbeName << " FILE MEMORY_CAP_BYTES\n"
-                  << "Reads every grid of FILE under the address-space cap; exit code "
+        std::cerr << "usage: " << lh::kVdbProbeName << " FILE MEMORY_CAP_BYTES ["
+                  << lh::kProbeLightingVolumeArgument << "]\n"
+                  << "Reads every grid of FILE (or all but the MPI's planes) under the "
+                     "address-space cap; exit code "
                   << lh::kProbeRead << " read, " << lh::kProbeReadFailed << " unreadable, "
                   << lh::kProbeOutOfMemory << " over the cap, " << lh::kProbeUsage << " usage.\n";
         return lh::kProbeUsage;
@@ -56,7 +63,8 @@ int main(int argc, char** argv) {
         openvdb::initialize();
         openvdb::io::File file(argv[1]);
         file.open(/*delayLoad=*/false);
-        file.getGrids();
+        lh::readSelectedGrids(file, lightingVolumeOnly ? lh::GridSelection::LightingVolume
+                                                       : lh::GridSelection::Every);
         file.close();
         return lh::kProbeRead;
     } catch (const std::bad_alloc&) {

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "vdb/grid_selection.h"
 #include "vdb/mantissa_rounding.h"
 #include "vdb/safe_read.h"
 
@@ -28,7 +29,7 @@ struct VdbContents {
     openvdb::MetaMap::Ptr meta;
 };
 
-VdbContents readVdb(const std::string& path) {
+VdbContents readVdb(const std::string& path, GridSelection which) {
     initialiseOpenVdb();
     if (!std::filesystem::exists(path)) throw FileError("'" + path + "' does not exist");
     if (std::filesystem::is_directory(path))
@@ -36,11 +37,11 @@ VdbContents readVdb(const std::string& path) {
     // A FIFO or a device would block the read (and its trial read) for ever.
     if (!std::filesystem::is_regular_file(path))
         throw FileError("'" + path + "' is not a regular file");
-    probeVdbReadable(path);
+    probeVdbReadable(path, 0, 0, which);
     try {
         openvdb::io::File file(path);
         file.open(/*delayLoad=*/false);
-        VdbContents contents{*file.getGrids(), file.getMetadata()};
+        VdbContents contents{readSelectedGrids(file, which), file.getMetadata()};
         file.close();
         return contents;
     } catch (const openvdb::Exception& e) {
@@ -325,17 +326,18 @@ std::optional<Mpi> mpiFromContents(const VdbContents& contents, const std::strin
 
 LightingVolume loadVolume(const std::string& path, std::vector<std::string>* warnings,
                           const VolumeLoadOptions& options) {
-    return volumeFromContents(readVdb(path), path, warnings, options);
+    return volumeFromContents(readVdb(path, GridSelection::LightingVolume), path, warnings,
+                              options);
 }
 
 VolumeFile loadVolumeFile(const std::string& path, std::vector<std::string>* warnings,
                           const VolumeLoadOptions& options) {
-    const VdbContents contents = readVdb(path);
+    const VdbContents contents = readVdb(path, GridSelection::Every);
     return {volumeFromContents(contents, path, warnings, options), mpiFromContents(contents, path)};
 }
 
 Mpi loadMpi(const std::string& path) {
-    std::optional<Mpi> mpi = mpiFromContents(readVdb(path), path);
+    std::optional<Mpi> mpi = mpiFromContents(readVdb(path, GridSelection::Every), path);
     if (!mpi) throw FileError("'" + path + "': holds no MPI (no 'lighthouse_mpi_camera' metadata)");
     return *mpi;
 }

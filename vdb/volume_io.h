@@ -65,6 +65,7 @@ std::string halfClampWarning(const VolumeSaveReport& report);
 // Loads the lighting volume of a .vdb file. Throws FileError naming the file (and grid) if
 // the file is not a VDB, has no density/colour pair, has wrong grid types or non-affine
 // transforms, or (with Reject) holds NaN/Inf. `warnings`, if given, receives what was sanitised.
+// An MPI the file holds is not read (vdb/grid_selection.h): loadVolumeFile reads both.
 LightingVolume loadVolume(const std::string& path, std::vector<std::string>* warnings = nullptr,
                           const VolumeLoadOptions& options = {});
 

@@ -130,9 +130,31 @@ TEST(SafeRead, TheProbesExitCodesSayWhatHappened) {
     EXPECT_EQ(probeExitCode({corruptFile(), cap}), kProbeReadFailed);
     EXPECT_EQ(probeExitCode({"/no/such/file.vdb", cap}), kProbeReadFailed);
     EXPECT_EQ(probeExitCode({hugeSizeFile(), cap}), kProbeOutOfMemory);
-    EXPECT_EQ(probeExitCode({exampleFile()}), kProbeUsage);          // no cap
-    EXPECT_EQ(probeExitCode({exampleFile(), "0"}), kProbeUsage);     // not positive
-    EXPECT_EQ(probeExitCode({exampleFile(), "2GiB"}), kProbeUsage);  // not a number of bytes
+    EXPECT_EQ(probeExitCode({exampleFile()}), kProbeUsage);                 // no cap
+    EXPECT_EQ(probeExitCode({exampleFile(), "0"}), kProbeUsage);            // not positive
+    EXPECT_EQ(probeExitCode({exampleFile(), "2GiB"}), kProbeUsage);         // not a number of bytes
+    EXPECT_EQ(probeExitCode({exampleFile(), cap, "volume"}), kProbeUsage);  // unknown selection
+}
+
+// With `lighting-volume` the probe reads what loadVolume reads: every grid but the MPI's. A file
+// cut short inside its MPI (saveVdb writes the MPI's planes last) fails the whole read and
+// passes that one.
+TEST(SafeRead, TheProbeReadsOnlyTheGridsItsCallerWill) {
+    const std::string path = (std::filesystem::temp_directory_path() / "lh_safe_read" /
+                              ("cut_mpi_" + std::to_string(::getpid()) + ".vdb"))
+                                 .string();
+    Mpi mpi = Mpi::create(exampleCameras().ref, 1.0, 7.0, 3);
+    for (int d = 0; d < 3; ++d)
+        for (int y = 0; y < mpi.camera.height; ++y)
+            for (int x = 0; x < mpi.camera.width; ++x) mpi.pixel(d, x, y)[3] = 0.5f;
+    const LightingVolume volume = makeExampleVolume(2, 8);
+    saveVdb(path, &volume, &mpi);
+    std::filesystem::resize_file(path, std::filesystem::file_size(path) - 200);
+    const std::string cap = std::to_string(std::size_t(2) << 30);
+    EXPECT_EQ(probeExitCode({path, cap}), kProbeReadFailed);
+    EXPECT_EQ(probeExitCode({path, cap, kProbeLightingVolumeArgument}), kProbeRead);
+    EXPECT_EQ(probeVdbReadable(path, 0, 0, GridSelection::LightingVolume), ProbeResult::Read);
+    EXPECT_THROW(probeVdbReadable(path), FileError);
 }
 
 // The probe's child is the probe binary itself (its /proc/PID/exe), not a copy of this test

@@ -334,5 +334,30 @@ TEST(VolumeIo, LoadVolumeFileGivesTheMpiWhenThereIsOne) {
     EXPECT_FALSE(loadVolumeFile(path).mpi.has_value());
 }
 
+// Rendering needs only the lighting volume: its grids are read and the MPI's are not
+// (vdb/grid_selection.h). saveVdb writes the MPI's planes after the volume's grids, so cutting
+// the file short damages only the MPI: the volume still loads, and reading the MPI says what
+// is wrong.
+TEST(VolumeIo, TheVolumeLoadsWithoutReadingTheMpi) {
+    LightingVolume v = makeExampleVolume(2, 8);
+    Mpi mpi = Mpi::create(exampleCameras().ref, 1.0, 7.0, 3);
+    for (int d = 0; d < 3; ++d)
+        for (int y = 0; y < mpi.camera.height; ++y)
+            for (int x = 0; x < mpi.camera.width; ++x) mpi.pixel(d, x, y)[3] = 0.5f;
+    const std::string path = tempPath("cut_mpi.vdb");
+    saveVdb(path, &v, &mpi);
+    const LightingVolume whole = loadVolume(path);
+    fs::resize_file(path, fs::file_size(path) - 200);
+
+    const LightingVolume cut = loadVolume(path);
+    ASSERT_EQ(cut.levels.size(), whole.levels.size());
+    for (std::size_t k = 0; k < cut.levels.size(); ++k) {
+        expectSameGrid(*cut.levels[k].density, *whole.levels[k].density);
+        expectSameGrid(*cut.levels[k].color, *whole.levels[k].color);
+    }
+    EXPECT_THROW(loadMpi(path), FileError);
+    EXPECT_THROW(loadVolumeFile(path), FileError);
+}
+
 }  // namespace
 }  // namespace lh
