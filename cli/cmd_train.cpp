@@ -94,6 +94,12 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "above white, as a mirror ball shows them; needs each envmap's observed mask "
                     "(env_K_mask.png, or env_K_pos.exr and the reference depth); 0: off")
         ->capture_default_str();
+    cmd->add_option("--coarse-envmap-weight", o->coarseEnvmapWeight,
+                    "Weight of the HDR loss (log radiance) of envmaps averaged over 4x4-pixel "
+                    "blocks: asks for the light of each block however it is spread inside it, so "
+                    "a lamp the volume can only show spread over a voxel may be as bright as it "
+                    "is; 0: off")
+        ->capture_default_str();
     cmd->add_option("--view-hdr-weight", o->viewHdrWeight,
                     "Weight of the HDR loss (log radiance) of the MPI's held-out view against its "
                     "unclipped render tgt.exr: it teaches how bright clipped windows and lamps "

@@ -114,6 +114,13 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& 
         .mean();
 }
 
+torch::Tensor coarseHdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& target,
+                                 int block) {
+    if (block <= 1) return hdrImageLoss(predicted, target);
+    return hdrImageLoss(torch::avg_pool2d(predicted.clamp_min(0.0), {block, block}),
+                        torch::avg_pool2d(target.clamp_min(0.0), {block, block}));
+}
+
 namespace {
 
 torch::Tensor luminanceOf(const torch::Tensor& linear) {  // [N, 3, H, W] -> [N, 1, H, W]

@@ -23,6 +23,16 @@ torch::Tensor squaredImageLoss(const torch::Tensor& predictedLinear,
 // radiance. Unlike imageLoss it sees how bright a lamp or window is (imageLoss clamps at 1).
 torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear);
 
+// Coarse HDR image loss: hdrImageLoss of the two images averaged, in linear radiance, over
+// blocks of `block` x `block` pixels (a trailing part block is left out). At full resolution a
+// lamp smaller than a voxel, which the volume can only show spread over the wall around it, is
+// charged on every wall pixel it brightens, and the per-pixel losses keep it dim; averaged over
+// a block as large as that spread, a lamp of the right power in the right block costs nothing,
+// however it is spread inside the block. `block` 1 is hdrImageLoss.
+constexpr int kCoarseEnvmapBlock = 4;  // pixels: 12 degrees of a 120x60 training envmap
+torch::Tensor coarseHdrImageLoss(const torch::Tensor& predictedLinear,
+                                 const torch::Tensor& targetLinear, int block);
+
 // What the PatchGAN discriminator sees of an HDR envmap under `train --adversarial-input log`:
 // ln(1 + radiance) / ln(1 + 100), so 0 is black, 1 a radiance of 100 and a lamp of 1000 is 1.5.
 // sRGB (srgbEncodeTensor) clamps at 1, where a white wall and a lamp look alike; this keeps

@@ -61,6 +61,8 @@ void TrainOptions::validate() const {
         throw InputError("--envmap-mse-weight must be in [0, 100]");
     if (!(highlightWeight >= 0 && highlightWeight <= 100))
         throw InputError("--highlight-weight must be in [0, 100]");
+    if (!(coarseEnvmapWeight >= 0 && coarseEnvmapWeight <= 100))
+        throw InputError("--coarse-envmap-weight must be in [0, 100]");
     if (!(viewHdrWeight >= 0 && viewHdrWeight <= 100))
         throw InputError("--view-hdr-weight must be in [0, 100]");
     if (!(pruneAlpha >= 0 && pruneAlpha < 1)) throw InputError("--prune-alpha must be in [0, 1)");
@@ -565,6 +567,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.envmapSquaredWeight > 0) progress << ", " << o.envmapSquaredWeight << " x squared sRGB";
     if (o.highlightWeight > 0)
         progress << ", " << o.highlightWeight << " x highlights (observed lamps and windows)";
+    if (o.coarseEnvmapWeight > 0)
+        progress << ", " << o.coarseEnvmapWeight << " x HDR over " << kCoarseEnvmapBlock << "x"
+                 << kCoarseEnvmapBlock << " blocks";
     if (o.viewHdrWeight > 0)
         progress << "; views also " << o.viewHdrWeight << " x HDR (unclipped tgt.exr)";
     if (o.maxPhotoClipped < 1.0)
@@ -659,6 +664,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                         envLoss =
                             envLoss + o.highlightWeight * highlightLoss(rendered, ex.envmaps[k],
                                                                         ex.envmapObserved[k]);
+                    if (o.coarseEnvmapWeight > 0)
+                        envLoss = envLoss +
+                                  o.coarseEnvmapWeight * coarseHdrImageLoss(rendered, ex.envmaps[k],
+                                                                            kCoarseEnvmapBlock);
                     if (o.envmapSquaredWeight > 0)
                         envLoss = envLoss +
                                   o.envmapSquaredWeight * squaredImageLoss(rendered, ex.envmaps[k]);

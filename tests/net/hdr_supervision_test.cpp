@@ -59,6 +59,24 @@ TEST(Losses, HdrImageLossIsZeroOnIdenticalInputsAndSeesBrightness) {
     EXPECT_NEAR(hdrImageLoss(dim, a).item<double>(), std::log(51.0) - std::log(2.0), 1e-5);
 }
 
+// A lamp spread over its 4x4 block with its power kept costs nothing at block 4, and what the
+// full-resolution loss charges for the spread; moved to another block, it costs again.
+TEST(Losses, CoarseHdrLossSeesEachBlocksLightHoweverItIsSpread) {
+    auto room = torch::full({1, 3, 8, 16}, 0.2);
+    EXPECT_EQ(coarseHdrImageLoss(room, room, 4).item<double>(), 0.0);
+    auto lamp = room.clone(), spread = room.clone(), moved = room.clone();
+    lamp.narrow(2, 1, 1).narrow(3, 5, 1).fill_(0.2 + 160.0);           // one pixel of block (0, 1)
+    spread.narrow(2, 0, 4).narrow(3, 4, 4).fill_(0.2 + 160.0 / 16.0);  // its power over the block
+    moved.narrow(2, 1, 1).narrow(3, 9, 1).fill_(0.2 + 160.0);          // one pixel of block (0, 2)
+    EXPECT_NEAR(coarseHdrImageLoss(spread, lamp, 4).item<double>(), 0.0, 1e-6);
+    EXPECT_GT(hdrImageLoss(spread, lamp).item<double>(), 0.2);  // 0.28
+    // Two of the 8 blocks differ by ln(1 + 10.2) - ln(1.2), on every channel.
+    const double expected = 2.0 / 8.0 * (std::log(11.2) - std::log(1.2));
+    EXPECT_NEAR(coarseHdrImageLoss(moved, lamp, 4).item<double>(), expected, 1e-5);
+    EXPECT_NEAR(coarseHdrImageLoss(moved, lamp, 1).item<double>(),
+                hdrImageLoss(moved, lamp).item<double>(), 1e-7);
+}
+
 TEST(Losses, HighlightLossAsksForTheObservedLampsAndNoOthers) {
     // Two pixels: a lamp of 30 the photo saw, and a wall of 0.5.
     auto truth = torch::full({1, 3, 1, 2}, 0.5);

@@ -244,6 +244,23 @@ TEST_F(TrainerTest, TheEnvmapSquaredErrorWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, TheCoarseEnvmapWeightSteersTraining) {
+    // As the irradiance weight: off and strong give different weights, and the log says the
+    // term is on; a negative weight and one above 100 are refused.
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_coarse", 0.0, 20.0,
+                  [](TrainOptions& o, double w) { o.coarseEnvmapWeight = w; }, log),
+              1e-6)
+        << "the coarse envmap weight changed nothing";
+    EXPECT_NE(log.str().find("20 x HDR over 4x4 blocks"), std::string::npos) << log.str();
+    TrainOptions bad = options("lighthouse_trainer_coarse_bad");
+    bad.coarseEnvmapWeight = -1.0;
+    EXPECT_THROW(bad.validate(), InputError);
+    bad.coarseEnvmapWeight = 101.0;
+    EXPECT_THROW(bad.validate(), InputError);
+}
+
 TEST_F(TrainerTest, TheHighlightWeightSteersTraining) {
     // The tiny set's rooms have lamps in their envmaps and masks beside them: off and strong
     // give different weights, and the log says the term is on.
