@@ -1,10 +1,11 @@
 // Which grids of a .vdb file a reader needs.
 //
 // A predicted volume's file also holds its MPI: 2 grids per plane (vdb/mpi.h), 64 for 32
-// planes. Each plane is one voxel thick, so OpenVDB stores it in 8^3 leaves an eighth full:
-// on the demo pair's prediction its 64 grids take 0.8 s and 160 MB to read, the 10 grids of
-// the lighting volume 0.04 s and 30 MB. Commands that only render or inspect the volume skip
-// them, and so does the trial read made for them (vdb/safe_read.h).
+// planes. Each plane is one voxel thick, so OpenVDB stores it in 8^3 leaves an eighth full,
+// and on the demo pair's prediction the trial read of every grid takes six times as long and
+// four times the memory as that of the lighting volume's 10 (docs/format.md, "Only the grids
+// a command needs"). Commands that only render or inspect the volume skip the MPI's grids,
+// and so does the trial read made for them (vdb/safe_read.h).
 //
 // Header-only: the trial-read program includes it without linking the vdb library.
 #pragma once
