@@ -10,6 +10,8 @@
 // Header-only: the trial-read program includes it without linking the vdb library.
 #pragma once
 
+#include "vdb/mpi.h"
+
 #include <openvdb/io/File.h>
 
 #include <string>
@@ -21,10 +23,10 @@ enum class GridSelection {
     LightingVolume,  // every grid but the MPI's planes
 };
 
-// The MPI's plane grids: `mpi_rgb_P<d>` and `mpi_alpha_P<d>` (vdb/mpi.h). No lighting volume
+// The MPI's plane grids, by the stems vdb/mpi.h names and reads them with. No lighting volume
 // grid can be named so (theirs start with density, color, Cd or colour).
 inline bool isMpiPlaneGridName(const std::string& name) {
-    return name.rfind("mpi_rgb", 0) == 0 || name.rfind("mpi_alpha", 0) == 0;
+    return name.rfind(kMpiRgbGridStem, 0) == 0 || name.rfind(kMpiAlphaGridStem, 0) == 0;
 }
 
 // The selected grids of an open file: all of them in file order, or the lighting volume's by

@@ -102,8 +102,8 @@ openvdb::GridPtrVec mpiToGrids(const Mpi& mpi) {
                 if (p[0] != 0.f || p[1] != 0.f || p[2] != 0.f)
                     rgbAcc.setValue(ijk, openvdb::Vec3s(p[0], p[1], p[2]));
             }
-        rgb->setName("mpi_rgb" + planeSuffix(d));
-        alpha->setName("mpi_alpha" + planeSuffix(d));
+        rgb->setName(kMpiRgbGridStem + planeSuffix(d));
+        alpha->setName(kMpiAlphaGridStem + planeSuffix(d));
         rgb->setVectorType(openvdb::VEC_INVARIANT);
         for (openvdb::GridBase::Ptr g :
              {openvdb::GridBase::Ptr(rgb), openvdb::GridBase::Ptr(alpha)}) {
@@ -120,7 +120,8 @@ Mpi mpiFromGrids(const openvdb::GridPtrVec& grids, const PinholeCamera& camera,
     std::map<int, std::pair<openvdb::Vec3SGrid::Ptr, openvdb::FloatGrid::Ptr>> byPlane;
     for (const auto& g : grids) {
         const std::string name = g->getName();
-        const bool isRgb = name.rfind("mpi_rgb", 0) == 0, isAlpha = name.rfind("mpi_alpha", 0) == 0;
+        const bool isRgb = name.rfind(kMpiRgbGridStem, 0) == 0,
+                   isAlpha = name.rfind(kMpiAlphaGridStem, 0) == 0;
         if (!isRgb && !isAlpha) continue;
         auto plane = g->getMetadata<openvdb::Int32Metadata>("mpi_plane");
         if (!plane)

@@ -14,6 +14,10 @@
 
 namespace lh {
 
+// Names of plane d's grids on disk: the stem followed by "_P" and d (two digits or more).
+constexpr const char* kMpiRgbGridStem = "mpi_rgb";
+constexpr const char* kMpiAlphaGridStem = "mpi_alpha";
+
 struct Mpi {
     PinholeCamera camera;             // the reference camera the planes live in
     std::vector<double> planeDepths;  // depth of each plane, scene units, back (far) to front

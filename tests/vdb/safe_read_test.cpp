@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "core/sibling_executable.h"
+#include "tests/support/cut_mpi_file.h"
 #include "vdb/example_volume.h"
 #include "vdb/volume_io.h"
 
@@ -143,13 +144,8 @@ TEST(SafeRead, TheProbeReadsOnlyTheGridsItsCallerWill) {
     const std::string path = (std::filesystem::temp_directory_path() / "lh_safe_read" /
                               ("cut_mpi_" + std::to_string(::getpid()) + ".vdb"))
                                  .string();
-    Mpi mpi = Mpi::create(exampleCameras().ref, 1.0, 7.0, 3);
-    for (int d = 0; d < 3; ++d)
-        for (int y = 0; y < mpi.camera.height; ++y)
-            for (int x = 0; x < mpi.camera.width; ++x) mpi.pixel(d, x, y)[3] = 0.5f;
-    const LightingVolume volume = makeExampleVolume(2, 8);
-    saveVdb(path, &volume, &mpi);
-    std::filesystem::resize_file(path, std::filesystem::file_size(path) - 200);
+    test::saveWithFilledMpi(path, makeExampleVolume(2, 8));
+    test::cutShortInsideItsMpi(path);
     const std::string cap = std::to_string(std::size_t(2) << 30);
     EXPECT_EQ(probeExitCode({path, cap}), kProbeReadFailed);
     EXPECT_EQ(probeExitCode({path, cap, kProbeLightingVolumeArgument}), kProbeRead);

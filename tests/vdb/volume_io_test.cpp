@@ -1,6 +1,7 @@
 #include "vdb/volume_io.h"
 
 #include "core/errors.h"
+#include "tests/support/cut_mpi_file.h"
 #include "tests/support/test_volumes.h"
 #include "vdb/example_volume.h"
 
@@ -339,15 +340,10 @@ TEST(VolumeIo, LoadVolumeFileGivesTheMpiWhenThereIsOne) {
 // the file short damages only the MPI: the volume still loads, and reading the MPI says what
 // is wrong.
 TEST(VolumeIo, TheVolumeLoadsWithoutReadingTheMpi) {
-    LightingVolume v = makeExampleVolume(2, 8);
-    Mpi mpi = Mpi::create(exampleCameras().ref, 1.0, 7.0, 3);
-    for (int d = 0; d < 3; ++d)
-        for (int y = 0; y < mpi.camera.height; ++y)
-            for (int x = 0; x < mpi.camera.width; ++x) mpi.pixel(d, x, y)[3] = 0.5f;
     const std::string path = tempPath("cut_mpi.vdb");
-    saveVdb(path, &v, &mpi);
+    test::saveWithFilledMpi(path, makeExampleVolume(2, 8));
     const LightingVolume whole = loadVolume(path);
-    fs::resize_file(path, fs::file_size(path) - 200);
+    test::cutShortInsideItsMpi(path);
 
     const LightingVolume cut = loadVolume(path);
     ASSERT_EQ(cut.levels.size(), whole.levels.size());
