@@ -95,10 +95,14 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "(env_K_mask.png, or env_K_pos.exr and the reference depth); 0: off")
         ->capture_default_str();
     cmd->add_option("--coarse-envmap-weight", o->coarseEnvmapWeight,
-                    "Weight of the HDR loss (log radiance) of envmaps averaged over 4x4-pixel "
-                    "blocks: asks for the light of each block however it is spread inside it, so "
-                    "a lamp the volume can only show spread over a voxel may be as bright as it "
-                    "is; 0: off")
+                    "Weight of the HDR loss (log radiance) of envmaps averaged over blocks "
+                    "(--coarse-envmap-block): asks for the light of each block however it is "
+                    "spread inside it, so a lamp the volume can only show spread over a voxel "
+                    "may be as bright as it is; 0: off")
+        ->capture_default_str();
+    cmd->add_option("--coarse-envmap-block", o->coarseEnvmapBlock,
+                    "Side of the coarse HDR loss's blocks in envmap pixels (4: 12 degrees of a "
+                    "120x60 envmap); larger blocks also forgive a lamp placed a little off")
         ->capture_default_str();
     cmd->add_option("--view-hdr-weight", o->viewHdrWeight,
                     "Weight of the HDR loss (log radiance) of the MPI's held-out view against its "

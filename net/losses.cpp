@@ -117,6 +117,7 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& 
 torch::Tensor coarseHdrImageLoss(const torch::Tensor& predicted, const torch::Tensor& target,
                                  int block) {
     if (block <= 1) return hdrImageLoss(predicted, target);
+    block = int(std::min<int64_t>({int64_t(block), predicted.size(-2), predicted.size(-1)}));
     return hdrImageLoss(torch::avg_pool2d(predicted.clamp_min(0.0), {block, block}),
                         torch::avg_pool2d(target.clamp_min(0.0), {block, block}));
 }

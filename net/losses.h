@@ -28,8 +28,8 @@ torch::Tensor hdrImageLoss(const torch::Tensor& predictedLinear, const torch::Te
 // lamp smaller than a voxel, which the volume can only show spread over the wall around it, is
 // charged on every wall pixel it brightens, and the per-pixel losses keep it dim; averaged over
 // a block as large as that spread, a lamp of the right power in the right block costs nothing,
-// however it is spread inside the block. `block` 1 is hdrImageLoss.
-constexpr int kCoarseEnvmapBlock = 4;  // pixels: 12 degrees of a 120x60 training envmap
+// however it is spread inside the block. `block` 1 is hdrImageLoss; a block larger than the
+// image is cut to the image's shorter side.
 torch::Tensor coarseHdrImageLoss(const torch::Tensor& predictedLinear,
                                  const torch::Tensor& targetLinear, int block);
 

@@ -63,6 +63,8 @@ void TrainOptions::validate() const {
         throw InputError("--highlight-weight must be in [0, 100]");
     if (!(coarseEnvmapWeight >= 0 && coarseEnvmapWeight <= 100))
         throw InputError("--coarse-envmap-weight must be in [0, 100]");
+    if (!(coarseEnvmapBlock >= 1 && coarseEnvmapBlock <= 60))
+        throw InputError("--coarse-envmap-block must be in [1, 60] pixels");
     if (!(viewHdrWeight >= 0 && viewHdrWeight <= 100))
         throw InputError("--view-hdr-weight must be in [0, 100]");
     if (!(pruneAlpha >= 0 && pruneAlpha < 1)) throw InputError("--prune-alpha must be in [0, 1)");
@@ -568,8 +570,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.highlightWeight > 0)
         progress << ", " << o.highlightWeight << " x highlights (observed lamps and windows)";
     if (o.coarseEnvmapWeight > 0)
-        progress << ", " << o.coarseEnvmapWeight << " x HDR over " << kCoarseEnvmapBlock << "x"
-                 << kCoarseEnvmapBlock << " blocks";
+        progress << ", " << o.coarseEnvmapWeight << " x HDR over " << o.coarseEnvmapBlock << "x"
+                 << o.coarseEnvmapBlock << " blocks";
     if (o.viewHdrWeight > 0)
         progress << "; views also " << o.viewHdrWeight << " x HDR (unclipped tgt.exr)";
     if (o.maxPhotoClipped < 1.0)
@@ -667,7 +669,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                     if (o.coarseEnvmapWeight > 0)
                         envLoss = envLoss +
                                   o.coarseEnvmapWeight * coarseHdrImageLoss(rendered, ex.envmaps[k],
-                                                                            kCoarseEnvmapBlock);
+                                                                            o.coarseEnvmapBlock);
                     if (o.envmapSquaredWeight > 0)
                         envLoss = envLoss +
                                   o.envmapSquaredWeight * squaredImageLoss(rendered, ex.envmaps[k]);

@@ -87,11 +87,13 @@ struct TrainOptions {
     // windows the photo saw at least min(Y, 2) bright, nothing else above 1, as a mirror ball
     // shows them. Needs the examples' observed masks (net/training_data.h loadExample). 0: off.
     double highlightWeight = 0.0;
-    // Weight of the coarse HDR envmap loss (net/losses.h coarseHdrImageLoss, blocks of
-    // kCoarseEnvmapBlock pixels): the light of each block of the envmap, however it is spread
-    // inside the block, so that a lamp shown as bright as it is but spread over a voxel is not
-    // charged for the wall around it. 0: off.
+    // Weight of the coarse HDR envmap loss (net/losses.h coarseHdrImageLoss): the light of each
+    // block of the envmap, however it is spread inside the block, so that a lamp shown as bright
+    // as it is but spread over a voxel is not charged for the wall around it. 0: off.
     double coarseEnvmapWeight = 0.0;
+    // Side of its blocks, envmap pixels (4: 12 degrees of a 120x60 training envmap). Larger
+    // blocks also forgive a lamp placed a little off.
+    int coarseEnvmapBlock = 4;
     // Weight of the HDR view loss (net/losses.h hdrImageLoss: L1 of ln(1 + radiance)) of the
     // MPI's rendering of the held-out view against that view's unclipped render (tgt.exr,
     // where the example has it). The clamped image loss cannot see a window brighter than 1;

@@ -75,6 +75,14 @@ TEST(Losses, CoarseHdrLossSeesEachBlocksLightHoweverItIsSpread) {
     EXPECT_NEAR(coarseHdrImageLoss(moved, lamp, 4).item<double>(), expected, 1e-5);
     EXPECT_NEAR(coarseHdrImageLoss(moved, lamp, 1).item<double>(),
                 hdrImageLoss(moved, lamp).item<double>(), 1e-7);
+    // Moved 3 pixels, into the next 4x4 block but the same 8x8 one: larger blocks forgive it.
+    auto nearby = room.clone();
+    nearby.narrow(2, 1, 1).narrow(3, 2, 1).fill_(0.2 + 160.0);
+    EXPECT_GT(coarseHdrImageLoss(nearby, lamp, 4).item<double>(), 0.1);
+    EXPECT_NEAR(coarseHdrImageLoss(nearby, lamp, 8).item<double>(), 0.0, 1e-6);
+    // A block larger than the image is cut to its 8 rows: the two 8x8 blocks, each a mean of
+    // 0.2 + 160 / 64 = 2.7 where the other has 0.2.
+    EXPECT_NEAR(coarseHdrImageLoss(moved, lamp, 40).item<double>(), std::log(3.7 / 1.2), 1e-5);
 }
 
 TEST(Losses, HighlightLossAsksForTheObservedLampsAndNoOthers) {

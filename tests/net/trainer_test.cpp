@@ -259,6 +259,27 @@ TEST_F(TrainerTest, TheCoarseEnvmapWeightSteersTraining) {
     EXPECT_THROW(bad.validate(), InputError);
     bad.coarseEnvmapWeight = 101.0;
     EXPECT_THROW(bad.validate(), InputError);
+    bad.coarseEnvmapWeight = 1.0;
+    for (int block : {0, 61}) {
+        bad.coarseEnvmapBlock = block;
+        EXPECT_THROW(bad.validate(), InputError) << "block " << block;
+    }
+}
+
+TEST_F(TrainerTest, TheCoarseEnvmapBlockSteersTraining) {
+    // Blocks of 2 and of 8 pixels ask for different light, so the same steps give different
+    // weights, and the log names the block in use.
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_coarse_block", 2.0, 8.0,
+                  [](TrainOptions& o, double block) {
+                      o.coarseEnvmapWeight = 20.0;
+                      o.coarseEnvmapBlock = int(block);
+                  },
+                  log),
+              1e-6)
+        << "the coarse envmap block changed nothing";
+    EXPECT_NE(log.str().find("20 x HDR over 8x8 blocks"), std::string::npos) << log.str();
 }
 
 TEST_F(TrainerTest, TheHighlightWeightSteersTraining) {
