@@ -32,6 +32,8 @@ void addEvalCommand(CLI::App& app, const int& threads) {
                     "As predict's --prune-alpha (default: the model's, as predict's)")
         ->check(CLI::Range(0.0f, 1.0f));
     cmd->add_flag("--shell", o->shell, "As predict's --shell");
+    cmd->add_option("--highlight-gain", o->highlightGain, "As predict's --highlight-gain")
+        ->capture_default_str();
     cmd->add_flag("--headroom", o->headroom,
                   "Also score ours with one part of the truth put in (the observed pixels, the "
                   "unobserved ones, the lamps and windows, the observed lamps and windows): what "

@@ -44,6 +44,7 @@ struct PredictOptions {
     int mantissaBits = 0;                // 0: values as the network gives them
     float pruneAlpha = -1;               // the model's (net/predictor.h)
     bool shell = false;                  // collapse the volume into a shell (net/predictor.h)
+    double highlightGain = 1.0;          // what the volume holds above white, times this
     std::string pairs, examples, shard;  // batch form
 };
 
@@ -113,6 +114,7 @@ net::PredictorOptions predictorOptions(const PredictOptions& o, int threads) {
     po.threads = threads;
     po.pruneAlpha = o.pruneAlpha;
     po.shell = o.shell;
+    po.highlightGain = o.highlightGain;
     return po;
 }
 
@@ -277,6 +279,11 @@ void addPredictCommand(CLI::App& app, const int& threads) {
                   "Collapse the predicted medium into an opaque shell as seen from the middle of "
                   "the room: envmaps render several times faster, at a small loss of accuracy "
                   "away from that point (docs/network.md, \"The shell\")");
+    cmd->add_option("--highlight-gain", o->highlightGain,
+                    "Multiply what each voxel holds above white by this, hue kept: the lamps and "
+                    "windows the model shows only a little brighter than white get back the light "
+                    "they give; nothing at or below white changes (1-1000; docs/network.md)")
+        ->capture_default_str();
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly "
                     "all). Default: the threshold the model was trained under, else 0.03")

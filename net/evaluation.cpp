@@ -84,6 +84,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     po.threads = o.threads;
     if (o.pruneAlpha >= 0) po.pruneAlpha = o.pruneAlpha;
     po.shell = o.shell;
+    po.highlightGain = o.highlightGain;
     const Predictor predictor(po);
     const NetConfig& config = predictor.config();
     fs::create_directories(o.out);
@@ -184,9 +185,16 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     }
 
     report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
+    if (o.highlightGain != 1.0) {
+        std::ostringstream gain;
+        gain << o.highlightGain;
+        report.markdown += "\n\"ours\": what each predicted voxel holds above white, times " +
+                           gain.str() + " (`--highlight-gain`).\n";
+    }
     if (o.shell)
-        report.markdown += "\n\"ours\": every predicted volume collapsed into an opaque shell "
-                           "(`--shell`, docs/network.md).\n";
+        report.markdown +=
+            "\n\"ours\": every predicted volume collapsed into an opaque shell "
+            "(`--shell`, docs/network.md).\n";
     if (o.headroom) report.markdown += headroomTableMarkdown(report.methods[0], report.headroom);
     if (o.shard.active) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the
@@ -214,7 +222,8 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
               {"max_scenes", o.maxScenes},
               {"methods", methodNames},
               {"prune_alpha", predictor.pruneAlpha()},
-              {"shell", o.shell}}},
+              {"shell", o.shell},
+              {"highlight_gain", o.highlightGain}}},
             {"csv", "metrics." + tag + ".csv"},
             {"sheet_rows", strips},
             {"examples", shardExamples},

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "net/device.h"
+#include "net/highlight_gain.h"
 #include "net/lighthouse_net.h"
 #include "net/volume_export.h"
 #include "render/radial_shell.h"
@@ -67,6 +68,7 @@ struct Predictor::Impl {
     LighthouseNet net{nullptr};
     float pruneAlpha = kDefaultPruneAlpha;
     bool shell = false;
+    double highlightGain = 1.0;
 };
 
 Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -74,6 +76,7 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
     impl_->device = selectDevice(options.device);
     if (!(options.pruneAlpha < 1))  // NaN too
         throw InputError("--prune-alpha must be in [0, 1)");
+    validateHighlightGain(options.highlightGain);
     if (!options.untrainedConfig.empty()) {
         impl_->net = LighthouseNet(NetConfig::byName(options.untrainedConfig));
         impl_->net->to(impl_->device);
@@ -87,6 +90,7 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
                         : trainedUnder > 0      ? float(trainedUnder)
                                                 : kDefaultPruneAlpha;
     impl_->shell = options.shell;
+    impl_->highlightGain = options.highlightGain;
 }
 
 float Predictor::pruneAlpha() const { return impl_->pruneAlpha; }
@@ -114,6 +118,7 @@ Prediction Predictor::predict(const StereoPair& pair) const {
     torch::NoGradGuard noGrad;
     const PipelineOutput out = impl_->net->run(inputs, true);
     result.volume = cubesToVolume(out.cubes, inputs.layout, impl_->pruneAlpha);
+    expandHighlights(result.volume, impl_->highlightGain);
     if (impl_->shell)
         result.volume = collapseToShell(result.volume, defaultShellCentre(inputs.layout));
     result.mpiOnly = cubesToVolume(out.mpiCubes, inputs.layout);

@@ -64,6 +64,9 @@ struct PredictorOptions {
     // Collapse the completed volume into an opaque shell seen from defaultShellCentre
     // (render/radial_shell.h): the same envmap from there, far fewer voxels for rays to cross.
     bool shell = false;
+    // What the completed volume holds above white, times this (net/highlight_gain.h), before
+    // any shell is made; 1: as the model predicts it.
+    double highlightGain = 1.0;
 };
 
 // The bundled model's path.

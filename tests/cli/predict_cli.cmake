@@ -155,6 +155,12 @@ lighthouse_cli_error(predict_negative_prune_alpha
   ABSENT pred_negative_prune.vdb
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --prune-alpha -0.5 -o pred_negative_prune.vdb)
+# A gain below 1 would dim the lamps: refused, nothing written.
+lighthouse_cli_error(predict_highlight_gain_below_one
+  EXPECT "--highlight-gain must be in .1, 1000."
+  ABSENT pred_dim.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --highlight-gain 0.5 -o pred_dim.vdb)
 lighthouse_cli_error(eval_negative_prune_alpha
   EXPECT "--prune-alpha"
   ABSENT eval_negative_prune

@@ -185,9 +185,49 @@ TEST_F(PredictionTest, ShellKeepsTheEnvmapSeenFromItsCentre) {
     EXPECT_GT(std::sqrt(black / n) / (sum / n), 0.9);
 }
 
+TEST_F(PredictionTest, HighlightGainBrightensOnlyVoxelsAboveWhite) {
+    // An HDR model, and a linear (EXR) pair of a wall four times brighter than white, so that
+    // some voxels are above white and some, where the model invents darker colours, below.
+    torch::manual_seed(5);
+    LighthouseNet net(test::tinyHdrConfig());
+    const std::string path = test::uniqueTempPath("lighthouse_prediction_hdr.pt");
+    saveModel(net, path);
+    StereoPair pair = planePair(0.2);
+    for (float& v : pair.ref.pixels) v *= 4.f;
+    for (float& v : pair.src.pixels) v *= 4.f;
+    PredictorOptions plainOptions{path, "cpu", 2, ""}, gained = plainOptions;
+    gained.highlightGain = 20.0;
+    const Prediction plain = Predictor(plainOptions).predict(pair),
+                     bright = Predictor(gained).predict(pair);
+    std::filesystem::remove(path);
+    expectFinitePrediction(bright);
+    long long above = 0, below = 0;
+    for (size_t k = 0; k < plain.volume.levels.size(); ++k) {
+        const auto& before = plain.volume.levels[k].color->tree();
+        const auto& after = bright.volume.levels[k].color->tree();
+        for (auto it = before.cbeginValueOn(); it; ++it) {
+            const openvdb::Vec3s c = *it, g = after.getValue(it.getCoord());
+            const double y = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+            if (y > 1.0) {
+                ++above;
+                EXPECT_NEAR(0.2126 * g[0] + 0.7152 * g[1] + 0.0722 * g[2], 1 + 20 * (y - 1),
+                            1e-3 * (1 + 20 * y));
+            } else {
+                ++below;
+                EXPECT_EQ(g, c);
+            }
+        }
+    }
+    EXPECT_GT(above, 0) << "the test pair gave no voxel above white";
+    EXPECT_GT(below, 0);
+}
+
 TEST(PredictorOptionsTest, UnknownDeviceOrMissingModelIsAClearError) {
     EXPECT_THROW(Predictor(PredictorOptions{"/nonexistent/model.pt", "cpu", 1, ""}), FileError);
     EXPECT_THROW(Predictor(PredictorOptions{"", "tpu", 1, ""}), InputError);
+    PredictorOptions dim{"", "cpu", 1, ""};
+    dim.highlightGain = 0.5;
+    EXPECT_THROW(Predictor{dim}, InputError);
 }
 
 }  // namespace

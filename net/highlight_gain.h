@@ -1,0 +1,25 @@
+// Expanding a predicted volume's lamps and windows. The model shows where the photo saw a lamp
+// or a window, but only a little brighter than white: a voxel can only show a lamp smaller
+// than itself spread over its width, so the losses keep it near 1 (docs/network.md, "Where the
+// lamps and windows are"), while the true lamps reach tens to hundreds. Multiplying what a
+// voxel holds above white by a gain puts back the light a diffuse object would receive,
+// without touching anything at or below white: clamped-sRGB PSNR, which stops at 1, and the
+// colours' hues stay as they were.
+#pragma once
+
+#include "vdb/lighting_volume.h"
+
+namespace lh::net {
+
+// Gains a user may ask for: 1 leaves the volume as it is; 1000 already makes a voxel at 1.1
+// times white a lamp of 100.
+constexpr double kMaxHighlightGain = 1000.0;
+
+// Throws InputError naming --highlight-gain unless gain is in [1, kMaxHighlightGain].
+void validateHighlightGain(double gain);
+
+// Every active colour voxel of luminance Y above 1 (image/luminance.h) scaled, hue kept, to
+// luminance 1 + gain (Y - 1). Densities are left alone. Validates gain as above.
+void expandHighlights(LightingVolume& volume, double gain);
+
+}  // namespace lh::net
