@@ -183,6 +183,17 @@ ImageRGB stackSheetStrips(const std::vector<ImageRGB>& strips) {
     return sheet;
 }
 
+std::string evalPredictionNotes(double highlightGain, bool shell) {
+    std::ostringstream notes;
+    if (highlightGain != 1.0)
+        notes << "\n\"ours\": what each predicted voxel holds above white, times " << highlightGain
+              << " (`--highlight-gain`).\n";
+    if (shell)
+        notes << "\n\"ours\": every predicted volume collapsed into an opaque shell "
+                 "(`--shell`, docs/network.md).\n";
+    return notes.str();
+}
+
 std::string mergeEvalShards(const std::string& dir) {
     const fs::path table = fs::path(dir) / "table.md";
     if (fs::exists(table))
@@ -256,7 +267,8 @@ std::string mergeEvalShards(const std::string& dir) {
         sheet.push_back(readImage(strips[i].second.string()));
 
     const std::string markdown =
-        evalTableMarkdown(methods, scenes, header.value("data", ""), header.value("config", ""));
+        evalTableMarkdown(methods, scenes, header.value("data", ""), header.value("config", "")) +
+        evalPredictionNotes(header.value("highlight_gain", 1.0), header.value("shell", false));
     writeTextFile((fs::path(dir) / "metrics.csv").string(), csv.str());
     writePng(stackSheetStrips(sheet), (fs::path(dir) / "contact_sheet.png").string());
     writeTextFile(table.string(), markdown);

@@ -185,16 +185,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     }
 
     report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
-    if (o.highlightGain != 1.0) {
-        std::ostringstream gain;
-        gain << o.highlightGain;
-        report.markdown += "\n\"ours\": what each predicted voxel holds above white, times " +
-                           gain.str() + " (`--highlight-gain`).\n";
-    }
-    if (o.shell)
-        report.markdown +=
-            "\n\"ours\": every predicted volume collapsed into an opaque shell "
-            "(`--shell`, docs/network.md).\n";
+    report.markdown += evalPredictionNotes(o.highlightGain, o.shell);
     if (o.headroom) report.markdown += headroomTableMarkdown(report.methods[0], report.headroom);
     if (o.shard.active) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the

@@ -46,4 +46,12 @@ if [ "$net" = --net ]; then
     for f in table.md metrics.csv contact_sheet.png; do same_file eval_one/$f eval_two/$f; done
     expect_error "merged already" lh merge eval_two
     echo "eval: 2 shards + merge = one run"
+
+    # The merged table keeps the note on how "ours" was predicted.
+    lh eval --data one --no-oracle --highlight-gain 10 -o gain_one >/dev/null 2>&1
+    for k in 0 1; do lh eval --data one --no-oracle --highlight-gain 10 -o gain_two --shard $k/2 >/dev/null 2>&1; done
+    lh merge gain_two >/dev/null 2>&1
+    grep -q 'times 10 (`--highlight-gain`)' gain_one/table.md || fail "eval --highlight-gain did not note the gain"
+    for f in table.md metrics.csv; do same_file gain_one/$f gain_two/$f; done
+    echo "eval --highlight-gain: 2 shards + merge = one run"
 fi
