@@ -2,6 +2,7 @@
 // split, with the HDR metrics of docs/metrics.md beside it.
 #include "cli/commands.h"
 #include "cli/net_commands.h"
+#include "net/config.h"
 #include "net/evaluation.h"
 
 #include <iostream>
@@ -32,8 +33,9 @@ void addEvalCommand(CLI::App& app, const int& threads) {
                     "As predict's --prune-alpha (default: the model's, as predict's)")
         ->check(CLI::Range(0.0f, 1.0f));
     cmd->add_flag("--shell", o->shell, "As predict's --shell");
-    cmd->add_option("--highlight-gain", o->highlightGain, "As predict's --highlight-gain")
-        ->capture_default_str();
+    cmd->add_option("--highlight-gain", o->highlightGain,
+                    "As predict's --highlight-gain (default: the model's, as predict's)")
+        ->check(CLI::Range(1.0, net::kMaxHighlightGain));
     cmd->add_flag("--headroom", o->headroom,
                   "Also score ours with one part of the truth put in (the observed pixels, the "
                   "unobserved ones, the lamps and windows, the observed lamps and windows): what "

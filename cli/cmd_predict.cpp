@@ -44,7 +44,7 @@ struct PredictOptions {
     int mantissaBits = 0;                // 0: values as the network gives them
     float pruneAlpha = -1;               // the model's (net/predictor.h)
     bool shell = false;                  // collapse the volume into a shell (net/predictor.h)
-    double highlightGain = 1.0;          // what the volume holds above white, times this
+    double highlightGain = -1;           // the model's (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
 };
 
@@ -233,8 +233,11 @@ void runPredict(const PredictOptions& o, int threads) {
     }
     warnOfHalfClamping(
         saveVdb(o.output, &p.volume, &p.mpi, VolumeSaveOptions{o.half, o.mantissaBits}), "--half");
+    std::ostringstream gainNote;  // the highlight gain, where one is applied
+    if (predictor.highlightGain() != 1.0)
+        gainNote << ", above white x" << predictor.highlightGain();
     std::cerr << "predict: network " << p.seconds << " s; " << p.volume.activeVoxelCount()
-              << " active voxels (alpha >= " << predictor.pruneAlpha()
+              << " active voxels (alpha >= " << predictor.pruneAlpha() << gainNote.str()
               << (o.shell ? ", collapsed into a shell" : "") << "), MPI of " << p.mpi.planeCount()
               << " planes -> " << o.output << "\n";
     if (!points.empty()) {
@@ -282,8 +285,9 @@ void addPredictCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--highlight-gain", o->highlightGain,
                     "Multiply what each voxel holds above white by this, hue kept: the lamps and "
                     "windows the model shows only a little brighter than white get back the light "
-                    "they give; nothing at or below white changes (1-1000; docs/network.md)")
-        ->capture_default_str();
+                    "they give; nothing at or below white changes (1-1000; docs/network.md). "
+                    "Default: the gain the model was trained under, else 1")
+        ->check(CLI::Range(1.0, net::kMaxHighlightGain));
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly "
                     "all). Default: the threshold the model was trained under, else 0.03")

@@ -115,6 +115,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "empty rooms; the model records it and predict prunes there by default; "
                     "0: off")
         ->capture_default_str();
+    cmd->add_option("--highlight-gain", o->highlightGain,
+                    "Train under a highlight gain: every loss sees the completed volume with what "
+                    "each voxel holds above white multiplied by this, as predict --highlight-gain "
+                    "exports it; the model records it and predict applies it by default; 1: off")
+        ->capture_default_str();
     cmd->add_option("--direct-adversarial-weight", o->directAdversarialWeight,
                     "Weight of the paper's PatchGAN loss on the envmaps under direct supervision, "
                     "from the first step: it asks for envmaps that look like rooms (lamps and "

@@ -117,6 +117,8 @@ void NetConfig::validate() const {
     if (colourAnchor && !hdr) throw InputError("the colour anchor needs HDR colours");
     if (!(pruneAlpha >= 0 && pruneAlpha < 1))
         throw InputError("the model's pruning threshold (voxel alpha) must be in [0, 1)");
+    if (!(highlightGain >= 1 && highlightGain <= kMaxHighlightGain))
+        throw InputError("the model's highlight gain must be in [1, 1000]");
     if (completionScale != 1 && completionScale != 2)
         throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
@@ -142,17 +144,19 @@ std::string NetConfig::toJson() const {
                               {"hdr", hdr},
                               {"colour_anchor", colourAnchor},
                               {"height_profile", heightProfile},
-                              {"prune_alpha", pruneAlpha}};
+                              {"prune_alpha", pruneAlpha},
+                              {"highlight_gain", highlightGain}};
     return j.dump();
 }
 
 bool NetConfig::sameParameters(const NetConfig& other) const {
-    // Everything but the name, the colour anchor and the pruning threshold shapes the
-    // parameters.
+    // Everything but the name, the colour anchor, the pruning threshold and the highlight gain
+    // shapes the parameters.
     NetConfig a = *this, b = other;
     a.name = b.name;
     a.colourAnchor = b.colourAnchor;
     a.pruneAlpha = b.pruneAlpha;
+    a.highlightGain = b.highlightGain;
     return a.toJson() == b.toJson();
 }
 
@@ -178,6 +182,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.colourAnchor = j.value("colour_anchor", false);
         c.heightProfile = j.value("height_profile", false);
         c.pruneAlpha = j.value("prune_alpha", 0.0);
+        c.highlightGain = j.value("highlight_gain", 1.0);
     } catch (const nlohmann::json::exception& e) {
         throw FileError(sourceName + ": network configuration is not valid: " + e.what());
     }

@@ -14,6 +14,10 @@
 
 namespace lh::net {
 
+// Largest highlight gain a model or a user may ask for (net/highlight_gain.h): 1000 already
+// makes a voxel at 1.1 times white a lamp of 100.
+constexpr double kMaxHighlightGain = 1000.0;
+
 struct NetConfig {
     std::string name = "small";
     int width = 128;      // network input width, pixels (multiple of 16: four stride-2 stages)
@@ -49,6 +53,10 @@ struct NetConfig {
     // under (train --prune-alpha), so predict prunes there by default and the walls it learnt
     // to make opaque survive. 0: trained unpruned; predict uses its own default.
     double pruneAlpha = 0;
+    // What each voxel holds above white is multiplied by this when the volume is made
+    // (net/highlight_gain.h): the gain it was trained under (train --highlight-gain), so predict
+    // applies the same by default. 1: none.
+    double highlightGain = 1;
 
     static NetConfig small();
     static NetConfig paper();

@@ -185,7 +185,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     }
 
     report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
-    report.markdown += evalPredictionNotes(o.highlightGain, o.shell);
+    report.markdown += evalPredictionNotes(predictor.highlightGain(), o.shell);
     if (o.headroom) report.markdown += headroomTableMarkdown(report.methods[0], report.headroom);
     if (o.shard.active) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the
@@ -214,7 +214,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
               {"methods", methodNames},
               {"prune_alpha", predictor.pruneAlpha()},
               {"shell", o.shell},
-              {"highlight_gain", o.highlightGain}}},
+              {"highlight_gain", predictor.highlightGain()}}},
             {"csv", "metrics." + tag + ".csv"},
             {"sheet_rows", strips},
             {"examples", shardExamples},

@@ -7,13 +7,10 @@
 // colours' hues stay as they were.
 #pragma once
 
+#include "net/config.h"
 #include "vdb/lighting_volume.h"
 
 namespace lh::net {
-
-// Gains a user may ask for: 1 leaves the volume as it is; 1000 already makes a voxel at 1.1
-// times white a lamp of 100.
-constexpr double kMaxHighlightGain = 1000.0;
 
 // Throws InputError naming --highlight-gain unless gain is in [1, kMaxHighlightGain].
 void validateHighlightGain(double gain);

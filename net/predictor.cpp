@@ -76,7 +76,7 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
     impl_->device = selectDevice(options.device);
     if (!(options.pruneAlpha < 1))  // NaN too
         throw InputError("--prune-alpha must be in [0, 1)");
-    validateHighlightGain(options.highlightGain);
+    if (options.highlightGain >= 0) validateHighlightGain(options.highlightGain);
     if (!options.untrainedConfig.empty()) {
         impl_->net = LighthouseNet(NetConfig::byName(options.untrainedConfig));
         impl_->net->to(impl_->device);
@@ -90,10 +90,13 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
                         : trainedUnder > 0      ? float(trainedUnder)
                                                 : kDefaultPruneAlpha;
     impl_->shell = options.shell;
-    impl_->highlightGain = options.highlightGain;
+    impl_->highlightGain =
+        options.highlightGain >= 0 ? options.highlightGain : impl_->net->config.highlightGain;
 }
 
 float Predictor::pruneAlpha() const { return impl_->pruneAlpha; }
+
+double Predictor::highlightGain() const { return impl_->highlightGain; }
 
 Predictor::~Predictor() = default;
 

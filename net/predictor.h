@@ -65,8 +65,9 @@ struct PredictorOptions {
     // (render/radial_shell.h): the same envmap from there, far fewer voxels for rays to cross.
     bool shell = false;
     // What the completed volume holds above white, times this (net/highlight_gain.h), before
-    // any shell is made; 1: as the model predicts it.
-    double highlightGain = 1.0;
+    // any shell is made; 1: as the network predicts it. Negative: the gain the model was
+    // trained under (train --highlight-gain), else 1.
+    double highlightGain = -1.0;
 };
 
 // The bundled model's path.
@@ -80,7 +81,8 @@ public:
     Predictor& operator=(const Predictor&) = delete;
 
     const NetConfig& config() const;
-    float pruneAlpha() const;  // the threshold in use
+    float pruneAlpha() const;      // the threshold in use
+    double highlightGain() const;  // the gain in use
     Prediction predict(const StereoPair& pair) const;
 
 private:

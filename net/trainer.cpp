@@ -13,6 +13,7 @@
 #include "net/device.h"
 #include "net/distributed.h"
 #include "net/exposure_filter.h"
+#include "net/highlight_gain.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
 #include "net/mpi_render.h"
@@ -68,6 +69,7 @@ void TrainOptions::validate() const {
     if (!(viewHdrWeight >= 0 && viewHdrWeight <= 100))
         throw InputError("--view-hdr-weight must be in [0, 100]");
     if (!(pruneAlpha >= 0 && pruneAlpha < 1)) throw InputError("--prune-alpha must be in [0, 1)");
+    validateHighlightGain(highlightGain);
     if (!(alphaBinaryWeight >= 0 && alphaBinaryWeight <= 1000))
         throw InputError("--alpha-binary-weight must be in [0, 1000]");
     if (!(closureWeight >= 0 && closureWeight <= 100))
@@ -306,7 +308,8 @@ std::pair<double, double> validate(LighthouseNet& net, const std::vector<Trainin
             makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
                            *ex.cameras.far, net->config, device);
         const PipelineOutput out = net->run(in, true);
-        const auto cubes = pruneCubesStraightThrough(out.cubes, net->config.pruneAlpha);
+        const auto cubes = pruneCubesStraightThrough(
+            expandHighlightsInCubes(out.cubes, net->config.highlightGain), net->config.pruneAlpha);
         for (size_t e = 0; e < ex.envmaps.size(); ++e) {
             const auto& gt = ex.envmaps[e];
             const ImageRGB pred =
@@ -464,6 +467,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     TrainingState s;
     NetConfig netConfig = o.configOverride ? *o.configOverride : NetConfig::byName(o.config);
     netConfig.pruneAlpha = o.pruneAlpha;
+    netConfig.highlightGain = o.highlightGain;
     s.net = LighthouseNet(netConfig);
     s.net->to(device);
     s.average = LighthouseNet(s.net->config);
@@ -577,6 +581,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.maxPhotoClipped < 1.0)
         progress << "; photos exposed to clip on at most " << o.maxPhotoClipped
                  << " of the reference view";
+    if (o.highlightGain != 1.0) progress << "; cubes under a highlight gain of " << o.highlightGain;
     if (o.pruneAlpha > 0)
         progress << "; envmaps rendered with voxels of alpha below " << o.pruneAlpha
                  << " pruned (straight-through)";
@@ -632,7 +637,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             window.secondsData += secondsSince(clock);
 
             clock = std::chrono::steady_clock::now();
-            const PipelineOutput out = s.net->run(ex.inputs, stage >= 2);
+            PipelineOutput out = s.net->run(ex.inputs, stage >= 2);
+            // The cubes as predict exports them: every loss on them sees the gained lamps.
+            out.cubes = expandHighlightsInCubes(out.cubes, config.highlightGain);
             const auto view = renderMpiView(out.mpi, ex.inputs.depths, ex.inputs.ref, ex.target);
             auto viewLoss = lossOf(view, ex.targetImage);
             if (o.viewHdrWeight > 0 && ex.targetHdr.defined())

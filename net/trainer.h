@@ -106,6 +106,12 @@ struct TrainOptions {
     // prunes there by default. A model that keeps its light through a high threshold has
     // opaque walls and empty rooms, which the envmap renderer skips. 0: off.
     double pruneAlpha = 0.0;
+    // Train under a highlight gain (net/highlight_gain.h): every loss on the completed cubes
+    // sees them with what each voxel holds above white multiplied by this, as predict will
+    // export them. The model records it, and predict applies it by default. Starting from a
+    // model trained without it, the lamps it shows are at once as bright as the gain makes
+    // them, and training can then put out the false ones. 1: off.
+    double highlightGain = 1.0;
     // Weight of the prior towards empty or opaque voxels (net/losses.h binaryAlphaLoss) on the
     // cubes; with pruneAlpha, what asks for the empty rooms and opaque walls the renderer
     // skips and stops at. 0: off.

@@ -1,5 +1,6 @@
 #include "net/volume_render.h"
 
+#include "image/luminance.h"
 #include "net/mpi_resample.h"
 
 #include <algorithm>
@@ -132,6 +133,25 @@ std::vector<torch::Tensor> pruneCubesStraightThrough(const std::vector<torch::Te
         pruned.push_back(torch::cat({cube.narrow(1, 0, 3), straightThrough}, 1));
     }
     return pruned;
+}
+
+std::vector<torch::Tensor> expandHighlightsInCubes(const std::vector<torch::Tensor>& cubes,
+                                                   double gain) {
+    if (gain == 1.0) return cubes;
+    std::vector<torch::Tensor> expanded;
+    expanded.reserve(cubes.size());
+    for (const auto& cube : cubes) {
+        const auto rgb = cube.narrow(1, 0, 3);
+        const auto y = kLumaR * rgb.narrow(1, 0, 1) + kLumaG * rgb.narrow(1, 1, 1) +
+                       kLumaB * rgb.narrow(1, 2, 1);
+        // Where Y <= 1 the factor is exactly 1; the clamp keeps the unused branch finite.
+        const auto above = y > kLampLuminance;
+        const auto safeY = y.clamp_min(kLampLuminance);
+        const auto factor = torch::where(
+            above, (kLampLuminance + gain * (safeY - kLampLuminance)) / safeY, torch::ones_like(y));
+        expanded.push_back(torch::cat({rgb * factor, cube.narrow(1, 3, 1)}, 1));
+    }
+    return expanded;
 }
 
 }  // namespace lh::net

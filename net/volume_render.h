@@ -44,4 +44,10 @@ torch::Tensor renderEnvmapTorch(const std::vector<torch::Tensor>& cubes, const V
 std::vector<torch::Tensor> pruneCubesStraightThrough(const std::vector<torch::Tensor>& cubes,
                                                      double minAlpha);
 
+// The cubes as predict exports them under a highlight gain (net/highlight_gain.h): each voxel
+// of luminance Y above 1 scaled, hue kept, to 1 + gain (Y - 1); alpha and everything at or
+// below white unchanged. Differentiable. gain 1 returns the cubes unchanged.
+std::vector<torch::Tensor> expandHighlightsInCubes(const std::vector<torch::Tensor>& cubes,
+                                                   double gain);
+
 }  // namespace lh::net

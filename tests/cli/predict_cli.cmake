@@ -157,7 +157,7 @@ lighthouse_cli_error(predict_negative_prune_alpha
   ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --prune-alpha -0.5 -o pred_negative_prune.vdb)
 # A gain below 1 would dim the lamps: refused, nothing written.
 lighthouse_cli_error(predict_highlight_gain_below_one
-  EXPECT "--highlight-gain must be in .1, 1000."
+  EXPECT "--highlight-gain"
   ABSENT pred_dim.vdb
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --highlight-gain 0.5 -o pred_dim.vdb)

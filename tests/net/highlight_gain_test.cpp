@@ -1,6 +1,8 @@
-// Expanding a volume's lamps and windows: known answers on single voxels.
+// Expanding a volume's lamps and windows: known answers on single voxels, in the exported
+// volume and in the training cubes alike.
 #include "net/highlight_gain.h"
 #include "core/errors.h"
+#include "net/volume_render.h"
 
 #include <gtest/gtest.h>
 
@@ -48,6 +50,28 @@ TEST(HighlightGain, ScalesOnlyWhatIsAboveWhiteAndKeepsTheHue) {
     EXPECT_EQ(colourAt(v, 2)[2], 0.f);
     // Densities are the volume's shape: untouched.
     EXPECT_EQ(v.levels[0].density->tree().getValue(openvdb::Coord(1, 0, 0)), 4.f);
+}
+
+TEST(HighlightGain, TheTrainingCubesGainAsTheExportedVolume) {
+    // The same three voxels as a cube [1, 4, 1, 1, 3] (rgb, alpha): the same answers, alpha
+    // untouched, and a gradient that reaches the colours.
+    auto cube = torch::tensor({0.5f, 2.f, 3.f, 0.5f, 2.f, 1.5f, 0.5f, 2.f, 0.f, 0.3f, 0.6f, 0.9f})
+                    .view({1, 4, 1, 1, 3})
+                    .requires_grad_(true);
+    const auto gained = expandHighlightsInCubes({cube}, 10.0)[0];
+    LightingVolume v = threeVoxels();
+    expandHighlights(v, 10.0);
+    for (int x = 0; x < 3; ++x) {
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(gained[0][c][0][0][x].item<double>(), colourAt(v, x)[c], 1e-4)
+                << "voxel " << x << " channel " << c;
+        EXPECT_EQ(gained[0][3][0][0][x].item<float>(), cube[0][3][0][0][x].item<float>());
+    }
+    gained.sum().backward();
+    EXPECT_TRUE(torch::isfinite(cube.grad()).all().item<bool>());
+    EXPECT_NEAR(cube.grad()[0][0][0][0][0].item<double>(), 1.0, 1e-6);  // the wall: identity
+    EXPECT_GT(cube.grad()[0][0][0][0][1].item<double>(), 5.0);          // the lamp: about 10
+    EXPECT_TRUE(expandHighlightsInCubes({cube}, 1.0)[0].is_same(cube));
 }
 
 TEST(HighlightGain, GainOneChangesNothingAndBadGainsAreRefused) {

@@ -193,6 +193,28 @@ TEST(Model, ThePruningThresholdTravelsWithTheModelAndShapesNoParameter) {
     EXPECT_THROW(pruned.validate(), InputError);
 }
 
+TEST(Model, TheHighlightGainTravelsWithTheModelAndShapesNoParameter) {
+    NetConfig gained = tinyConfig();
+    gained.highlightGain = 10.0;
+    EXPECT_TRUE(gained.sameParameters(tinyConfig()));  // train --init fine-tunes across it
+    torch::manual_seed(3);
+    LighthouseNet net(gained);
+    const std::string path = test::uniqueTempPath("lighthouse_model_gain_test.pt");
+    saveModel(net, path, true);
+    EXPECT_DOUBLE_EQ(loadModel(path, torch::Device(torch::kCPU))->config.highlightGain, 10.0);
+    std::filesystem::remove(path);
+    // Models written before the key existed were trained without a gain.
+    std::string legacy = gained.toJson();
+    const std::string key = ",\"highlight_gain\":10.0";
+    ASSERT_NE(legacy.find(key), std::string::npos) << legacy;
+    legacy.erase(legacy.find(key), key.size());
+    EXPECT_EQ(NetConfig::fromJson(legacy, "test").highlightGain, 1.0);
+    for (double bad : {0.5, kMaxHighlightGain + 1}) {
+        gained.highlightGain = bad;
+        EXPECT_THROW(gained.validate(), InputError) << bad;
+    }
+}
+
 TEST(Model, SavedAndLoadedModelGivesIdenticalOutputs) {
     torch::manual_seed(3);
     LighthouseNet net(tinyConfig());

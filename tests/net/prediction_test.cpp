@@ -222,6 +222,37 @@ TEST_F(PredictionTest, HighlightGainBrightensOnlyVoxelsAboveWhite) {
     EXPECT_GT(below, 0);
 }
 
+TEST_F(PredictionTest, AppliesTheHighlightGainTheModelWasTrainedUnderUnlessToldOtherwise) {
+    EXPECT_DOUBLE_EQ(predictor.highlightGain(), 1.0);  // a model trained without one
+    NetConfig config = test::tinyHdrConfig();
+    config.highlightGain = 20.0;
+    torch::manual_seed(5);
+    LighthouseNet net(config);
+    const std::string path = test::uniqueTempPath("lighthouse_prediction_gained.pt");
+    saveModel(net, path);
+    PredictorOptions own{path, "cpu", 2, ""}, none = own, explicitGain = own;
+    none.highlightGain = 1.0;
+    explicitGain.highlightGain = 20.0;
+    const Predictor ownGain(own), noGain(none), told(explicitGain);
+    EXPECT_DOUBLE_EQ(ownGain.highlightGain(), 20.0);
+    EXPECT_DOUBLE_EQ(noGain.highlightGain(), 1.0);
+    StereoPair pair = planePair(0.2);
+    for (float& v : pair.ref.pixels) v *= 4.f;
+    for (float& v : pair.src.pixels) v *= 4.f;
+    const Prediction a = ownGain.predict(pair), b = told.predict(pair), c = noGain.predict(pair);
+    std::filesystem::remove(path);
+    // The model's own gain is the explicit one: the same volume; without it, another.
+    double same = 0, differ = 0;
+    for (size_t k = 0; k < a.volume.levels.size(); ++k)
+        for (auto it = a.volume.levels[k].color->cbeginValueOn(); it; ++it) {
+            const openvdb::Vec3s x = *it;
+            same += (x - b.volume.levels[k].color->tree().getValue(it.getCoord())).length();
+            differ += (x - c.volume.levels[k].color->tree().getValue(it.getCoord())).length();
+        }
+    EXPECT_EQ(same, 0.0);
+    EXPECT_GT(differ, 0.0);
+}
+
 TEST(PredictorOptionsTest, UnknownDeviceOrMissingModelIsAClearError) {
     EXPECT_THROW(Predictor(PredictorOptions{"/nonexistent/model.pt", "cpu", 1, ""}), FileError);
     EXPECT_THROW(Predictor(PredictorOptions{"", "tpu", 1, ""}), InputError);

@@ -198,6 +198,28 @@ TEST_F(TrainerTest, TrainingUnderPruningSteersTrainingAndTheModelRecordsTheThres
     }
 }
 
+TEST_F(TrainerTest, TrainingUnderAHighlightGainSteersTrainingAndTheModelRecordsIt) {
+    // The tiny set's rooms have lamps, so its cubes go above white and the gain changes what
+    // the losses see.
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_gain", 1.0, 20.0,
+                  [](TrainOptions& o, double k) { o.highlightGain = k; }, log),
+              1e-6)
+        << "training under a highlight gain changed nothing";
+    EXPECT_NE(log.str().find("cubes under a highlight gain of 20"), std::string::npos) << log.str();
+    TrainOptions o = options("lighthouse_trainer_gain_record");
+    o.iterations = 1;
+    o.highlightGain = 20.0;
+    train(o, log);
+    EXPECT_DOUBLE_EQ(loadModel(o.out, torch::Device(torch::kCPU))->config.highlightGain, 20.0);
+    removeOutputs(o);
+    for (const double bad : {0.5, 2000.0}) {
+        o.highlightGain = bad;
+        EXPECT_THROW(o.validate(), InputError) << bad;
+    }
+}
+
 TEST_F(TrainerTest, TheBinaryAlphaPriorSteersTraining) {
     std::ostringstream log;
     EXPECT_GT(weightChangeOf(
