@@ -2,9 +2,9 @@
 // or a window, but only a little brighter than white: a voxel can only show a lamp smaller
 // than itself spread over its width, so the losses keep it near 1 (docs/network.md, "Where the
 // lamps and windows are"), while the true lamps reach tens to hundreds. Multiplying what a
-// voxel holds above white by a gain puts back the light a diffuse object would receive,
-// without touching anything at or below white: clamped-sRGB PSNR, which stops at 1, and the
-// colours' hues stay as they were.
+// voxel holds above white by a gain puts back some of the light a diffuse object would
+// receive. Voxels at or below white and every voxel's hue stay as they were, so an envmap
+// changes only where a voxel above white shows (predict --highlight-gain, docs/network.md).
 #pragma once
 
 #include "net/config.h"

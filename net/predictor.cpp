@@ -76,7 +76,7 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
     impl_->device = selectDevice(options.device);
     if (!(options.pruneAlpha < 1))  // NaN too
         throw InputError("--prune-alpha must be in [0, 1)");
-    if (options.highlightGain >= 0) validateHighlightGain(options.highlightGain);
+    if (!(options.highlightGain < 0)) validateHighlightGain(options.highlightGain);  // NaN too
     if (!options.untrainedConfig.empty()) {
         impl_->net = LighthouseNet(NetConfig::byName(options.untrainedConfig));
         impl_->net->to(impl_->device);
