@@ -2,6 +2,7 @@
 // cases: black, saturated and identical images, tiny baselines, and inputs that must be
 // refused with a clear error (zero baseline, NaN pixels, sizes that disagree with the cameras).
 #include "core/errors.h"
+#include "image/luminance.h"
 #include "net/lighthouse_net.h"
 #include "net/predictor.h"
 #include "render/envmap.h"
@@ -34,6 +35,24 @@ protected:
     static std::string& modelPath() {
         static std::string path;
         return path;
+    }
+
+    // A model of `config` with seeded random weights, saved to a fresh temporary path.
+    static std::string savedModel(const NetConfig& config, const std::string& name) {
+        torch::manual_seed(5);
+        LighthouseNet net(config);
+        const std::string path = test::uniqueTempPath(name);
+        saveModel(net, path);
+        return path;
+    }
+
+    // A linear (EXR) pair of a wall four times brighter than white: an HDR model's volume of
+    // it has voxels above white, and below it where the model invents darker colours.
+    static StereoPair brightPlanePair() {
+        StereoPair pair = planePair(0.2);
+        for (float& v : pair.ref.pixels) v *= 4.f;
+        for (float& v : pair.src.pixels) v *= 4.f;
+        return pair;
     }
 
     static StereoPair planePair(double baseline) {
@@ -128,10 +147,7 @@ TEST_F(PredictionTest, PrunesAtTheThresholdTheModelWasTrainedUnderUnlessToldOthe
     EXPECT_FLOAT_EQ(predictor.pruneAlpha(), kDefaultPruneAlpha);  // a model trained unpruned
     NetConfig config = test::tinyConfig();
     config.pruneAlpha = 0.4;
-    torch::manual_seed(5);
-    LighthouseNet net(config);
-    const std::string path = test::uniqueTempPath("lighthouse_prediction_pruned.pt");
-    saveModel(net, path);
+    const std::string path = savedModel(config, "lighthouse_prediction_pruned.pt");
     const Predictor ownThreshold(PredictorOptions{path, "cpu", 2, ""});
     PredictorOptions keepAll{path, "cpu", 2, ""};
     keepAll.pruneAlpha = 0;
@@ -186,15 +202,8 @@ TEST_F(PredictionTest, ShellKeepsTheEnvmapSeenFromItsCentre) {
 }
 
 TEST_F(PredictionTest, HighlightGainBrightensOnlyVoxelsAboveWhite) {
-    // An HDR model, and a linear (EXR) pair of a wall four times brighter than white, so that
-    // some voxels are above white and some, where the model invents darker colours, below.
-    torch::manual_seed(5);
-    LighthouseNet net(test::tinyHdrConfig());
-    const std::string path = test::uniqueTempPath("lighthouse_prediction_hdr.pt");
-    saveModel(net, path);
-    StereoPair pair = planePair(0.2);
-    for (float& v : pair.ref.pixels) v *= 4.f;
-    for (float& v : pair.src.pixels) v *= 4.f;
+    const std::string path = savedModel(test::tinyHdrConfig(), "lighthouse_prediction_hdr.pt");
+    const StereoPair pair = brightPlanePair();
     PredictorOptions plainOptions{path, "cpu", 2, ""}, gained = plainOptions;
     gained.highlightGain = 20.0;
     const Prediction plain = Predictor(plainOptions).predict(pair),
@@ -207,11 +216,10 @@ TEST_F(PredictionTest, HighlightGainBrightensOnlyVoxelsAboveWhite) {
         const auto& after = bright.volume.levels[k].color->tree();
         for (auto it = before.cbeginValueOn(); it; ++it) {
             const openvdb::Vec3s c = *it, g = after.getValue(it.getCoord());
-            const double y = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+            const double y = rec709Luminance(c.asPointer());
             if (y > 1.0) {
                 ++above;
-                EXPECT_NEAR(0.2126 * g[0] + 0.7152 * g[1] + 0.0722 * g[2], 1 + 20 * (y - 1),
-                            1e-3 * (1 + 20 * y));
+                EXPECT_NEAR(rec709Luminance(g.asPointer()), 1 + 20 * (y - 1), 1e-3 * (1 + 20 * y));
             } else {
                 ++below;
                 EXPECT_EQ(g, c);
@@ -226,19 +234,14 @@ TEST_F(PredictionTest, AppliesTheHighlightGainTheModelWasTrainedUnderUnlessToldO
     EXPECT_DOUBLE_EQ(predictor.highlightGain(), 1.0);  // a model trained without one
     NetConfig config = test::tinyHdrConfig();
     config.highlightGain = 20.0;
-    torch::manual_seed(5);
-    LighthouseNet net(config);
-    const std::string path = test::uniqueTempPath("lighthouse_prediction_gained.pt");
-    saveModel(net, path);
+    const std::string path = savedModel(config, "lighthouse_prediction_gained.pt");
     PredictorOptions own{path, "cpu", 2, ""}, none = own, explicitGain = own;
     none.highlightGain = 1.0;
     explicitGain.highlightGain = 20.0;
     const Predictor ownGain(own), noGain(none), told(explicitGain);
     EXPECT_DOUBLE_EQ(ownGain.highlightGain(), 20.0);
     EXPECT_DOUBLE_EQ(noGain.highlightGain(), 1.0);
-    StereoPair pair = planePair(0.2);
-    for (float& v : pair.ref.pixels) v *= 4.f;
-    for (float& v : pair.src.pixels) v *= 4.f;
+    const StereoPair pair = brightPlanePair();
     const Prediction a = ownGain.predict(pair), b = told.predict(pair), c = noGain.predict(pair);
     std::filesystem::remove(path);
     // The model's own gain is the explicit one: the same volume; without it, another.
