@@ -18,8 +18,9 @@ void writeAveragedModel(const std::vector<std::string>& inputs, const std::strin
         LighthouseNet next = loadModel(inputs[k], cpu);
         if (next->config.toJson() != configuration)
             throw InputError("'" + inputs[k] + "' has another configuration than '" + inputs[0] +
-                             "' (architecture or pruning threshold): only models fine-tuned "
-                             "from one model, with one configuration, can be averaged");
+                             "' (architecture, pruning threshold or highlight gain): only "
+                             "models fine-tuned from one model, with one configuration, can be "
+                             "averaged");
         // The running mean of k + 1 models: the mean of the first k, weighted k / (k + 1).
         updateWeightAverage(average, next, double(k) / double(k + 1));
     }

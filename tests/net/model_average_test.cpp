@@ -75,6 +75,13 @@ TEST(ModelAverage, RefusesOneModelAndModelsOfAnotherConfiguration) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find(b), std::string::npos) << e.what();
     }
+    // A model trained under a highlight gain is another configuration too: averaged with one
+    // trained without it, the soup would have no one gain to record.
+    NetConfig gained = tinyConfig();
+    gained.highlightGain = 10.0;
+    const std::string c = constantModel(gained, 1.0f, "lighthouse_average_gained.pt");
+    EXPECT_THROW(writeAveragedModel({a, c}, out, false), InputError);
+    std::filesystem::remove(c);
     EXPECT_THROW(writeAveragedModel({a, "/nonexistent/model.pt"}, out, false), FileError);
     EXPECT_FALSE(std::filesystem::exists(out));  // nothing written when refused
     std::filesystem::remove(a);
