@@ -5,18 +5,15 @@
 // voxel holds above white by a gain puts back some of the light a diffuse object would
 // receive. Voxels at or below white and every voxel's hue stay as they were, so an envmap
 // changes only where a voxel above white shows (predict --highlight-gain, docs/network.md).
+// The gain itself is expandHighlightsInCubes (net/volume_render.h), applied to the cubes both
+// in training and before predict turns them into grids.
 #pragma once
 
 #include "net/config.h"
-#include "vdb/lighting_volume.h"
 
 namespace lh::net {
 
 // Throws InputError naming --highlight-gain unless gain is in [1, kMaxHighlightGain].
 void validateHighlightGain(double gain);
-
-// Every active colour voxel of luminance Y above 1 (image/luminance.h) scaled, hue kept, to
-// luminance 1 + gain (Y - 1). Densities are left alone. Validates gain as above.
-void expandHighlights(LightingVolume& volume, double gain);
 
 }  // namespace lh::net

@@ -5,6 +5,7 @@
 #include "net/highlight_gain.h"
 #include "net/lighthouse_net.h"
 #include "net/volume_export.h"
+#include "net/volume_render.h"
 #include "render/radial_shell.h"
 
 #include <chrono>
@@ -120,8 +121,9 @@ Prediction Predictor::predict(const StereoPair& pair) const {
                        config, impl_->device);
     torch::NoGradGuard noGrad;
     const PipelineOutput out = impl_->net->run(inputs, true);
-    result.volume = cubesToVolume(out.cubes, inputs.layout, impl_->pruneAlpha);
-    expandHighlights(result.volume, impl_->highlightGain);
+    // The gain on the cubes, as training applies it, before they become grids.
+    result.volume = cubesToVolume(expandHighlightsInCubes(out.cubes, impl_->highlightGain),
+                                  inputs.layout, impl_->pruneAlpha);
     if (impl_->shell)
         result.volume = collapseToShell(result.volume, defaultShellCentre(inputs.layout));
     result.mpiOnly = cubesToVolume(out.mpiCubes, inputs.layout);

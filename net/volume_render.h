@@ -46,7 +46,8 @@ std::vector<torch::Tensor> pruneCubesStraightThrough(const std::vector<torch::Te
 
 // The cubes as predict exports them under a highlight gain (net/highlight_gain.h): each voxel
 // of luminance Y above 1 scaled, hue kept, to 1 + gain (Y - 1); alpha and everything at or
-// below white unchanged. Differentiable. gain 1 returns the cubes unchanged.
+// below white unchanged. Differentiable. gain 1 returns the cubes unchanged. Validate the gain
+// first (net/highlight_gain.h).
 std::vector<torch::Tensor> expandHighlightsInCubes(const std::vector<torch::Tensor>& cubes,
                                                    double gain);
 
