@@ -36,6 +36,9 @@ void addEvalCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--highlight-gain", o->highlightGain,
                     "As predict's --highlight-gain (default: the model's, as predict's)")
         ->check(CLI::Range(1.0, net::kMaxHighlightGain));
+    cmd->add_option("--highlight-knee", o->highlightKnee, "As predict's --highlight-knee")
+        ->check(CLI::Range(1.0, net::kMaxHighlightKnee))
+        ->capture_default_str();
     cmd->add_flag("--headroom", o->headroom,
                   "Also score ours with one part of the truth put in (the observed pixels, the "
                   "unobserved ones, the lamps and windows, the observed lamps and windows): what "

@@ -45,6 +45,7 @@ struct PredictOptions {
     float pruneAlpha = -1;               // the model's (net/predictor.h)
     bool shell = false;                  // collapse the volume into a shell (net/predictor.h)
     double highlightGain = -1;           // the model's (net/predictor.h)
+    double highlightKnee = 1;            // where the gain starts (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
 };
 
@@ -115,7 +116,16 @@ net::PredictorOptions predictorOptions(const PredictOptions& o, int threads) {
     po.pruneAlpha = o.pruneAlpha;
     po.shell = o.shell;
     po.highlightGain = o.highlightGain;
+    po.highlightKnee = o.highlightKnee;
     return po;
+}
+
+// A knee only says where a gain starts: without a gain it changes nothing, which a user who
+// asked for one should hear.
+void warnOfKneeWithoutGain(const net::Predictor& predictor) {
+    if (predictor.highlightKnee() != 1.0 && predictor.highlightGain() == 1.0)
+        std::cerr << "predict: warning: --highlight-knee changes nothing without a gain "
+                     "(--highlight-gain, or a model trained under one)\n";
 }
 
 void runPredictBatch(const PredictOptions& o, int threads) {
@@ -134,6 +144,7 @@ void runPredictBatch(const PredictOptions& o, int threads) {
     const std::vector<BatchItem> items = batchItems(o);
     fs::create_directories(o.output);
     const net::Predictor predictor(predictorOptions(o, threads));
+    warnOfKneeWithoutGain(predictor);
     std::size_t owned = 0, done = 0;
     for (std::size_t i = 0; i < items.size(); ++i) owned += shard.owns(i) ? 1 : 0;
     std::cerr << "predict: " << owned << " of " << items.size() << " pairs";
@@ -212,6 +223,7 @@ void runPredict(const PredictOptions& o, int threads) {
     for (const auto& w : net::stereoPairWarnings(pair)) std::cerr << "warning: " << w << "\n";
 
     const net::Predictor predictor(predictorOptions(o, threads));
+    warnOfKneeWithoutGain(predictor);
     const net::NetConfig& config = predictor.config();
     std::cerr << "predict: model '" << (o.model.empty() ? net::defaultModelPath() : o.model)
               << "' (config " << config.name << ": " << config.width << "x" << config.height
@@ -234,8 +246,11 @@ void runPredict(const PredictOptions& o, int threads) {
     warnOfHalfClamping(
         saveVdb(o.output, &p.volume, &p.mpi, VolumeSaveOptions{o.half, o.mantissaBits}), "--half");
     std::ostringstream gainNote;  // the highlight gain, where one is applied
-    if (predictor.highlightGain() != 1.0)
+    if (predictor.highlightGain() != 1.0 && predictor.highlightKnee() == 1.0)
         gainNote << ", above white x" << predictor.highlightGain();
+    else if (predictor.highlightGain() != 1.0)
+        gainNote << ", above luminance " << predictor.highlightKnee() << " x"
+                 << predictor.highlightGain();
     std::cerr << "predict: network " << p.seconds << " s; " << p.volume.activeVoxelCount()
               << " active voxels (alpha >= " << predictor.pruneAlpha() << gainNote.str()
               << (o.shell ? ", collapsed into a shell" : "") << "), MPI of " << p.mpi.planeCount()
@@ -288,6 +303,13 @@ void addPredictCommand(CLI::App& app, const int& threads) {
                     "they give; nothing at or below white changes (1-1000; docs/network.md). "
                     "Default: the gain the model was trained under, else 1")
         ->check(CLI::Range(1.0, net::kMaxHighlightGain));
+    cmd->add_option("--highlight-knee", o->highlightKnee,
+                    "Expand only what lies above this luminance: a voxel of luminance Y above it "
+                    "becomes KNEE + GAIN (Y - KNEE), so that the voxels a little above white "
+                    "around a lamp do not draw it too wide (1-100; docs/network.md, \"Brighter "
+                    "lamps and windows\")")
+        ->check(CLI::Range(1.0, net::kMaxHighlightKnee))
+        ->capture_default_str();
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "Leave voxels whose opacity is below this empty (sparsity; 0 keeps nearly "
                     "all). Default: the threshold the model was trained under, else 0.03")

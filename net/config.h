@@ -17,6 +17,8 @@ namespace lh::net {
 // Largest highlight gain a model or a user may ask for (net/highlight_gain.h): 1000 already
 // makes a voxel at 1.1 times white a lamp of 100.
 constexpr double kMaxHighlightGain = 1000.0;
+// Largest knee (net/highlight_gain.h): a luminance of 100 is already a lamp in any exposure.
+constexpr double kMaxHighlightKnee = 100.0;
 
 struct NetConfig {
     std::string name = "small";

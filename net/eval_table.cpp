@@ -183,11 +183,14 @@ ImageRGB stackSheetStrips(const std::vector<ImageRGB>& strips) {
     return sheet;
 }
 
-std::string evalPredictionNotes(double highlightGain, bool shell) {
+std::string evalPredictionNotes(double highlightGain, double highlightKnee, bool shell) {
     std::ostringstream notes;
-    if (highlightGain != 1.0)
+    if (highlightGain != 1.0 && highlightKnee == 1.0)
         notes << "\n\"ours\": what each predicted voxel holds above white, times " << highlightGain
               << " (`--highlight-gain`).\n";
+    else if (highlightGain != 1.0)
+        notes << "\n\"ours\": what each predicted voxel holds above luminance " << highlightKnee
+              << ", times " << highlightGain << " (`--highlight-gain`, `--highlight-knee`).\n";
     if (shell)
         notes << "\n\"ours\": every predicted volume collapsed into an opaque shell "
                  "(`--shell`, docs/network.md).\n";
@@ -268,7 +271,8 @@ std::string mergeEvalShards(const std::string& dir) {
 
     const std::string markdown =
         evalTableMarkdown(methods, scenes, header.value("data", ""), header.value("config", "")) +
-        evalPredictionNotes(header.value("highlight_gain", 1.0), header.value("shell", false));
+        evalPredictionNotes(header.value("highlight_gain", 1.0),
+                            header.value("highlight_knee", 1.0), header.value("shell", false));
     writeTextFile((fs::path(dir) / "metrics.csv").string(), csv.str());
     writePng(stackSheetStrips(sheet), (fs::path(dir) / "contact_sheet.png").string());
     writeTextFile(table.string(), markdown);

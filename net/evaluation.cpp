@@ -85,6 +85,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     if (o.pruneAlpha >= 0) po.pruneAlpha = o.pruneAlpha;
     po.shell = o.shell;
     po.highlightGain = o.highlightGain;
+    po.highlightKnee = o.highlightKnee;
     const Predictor predictor(po);
     const NetConfig& config = predictor.config();
     fs::create_directories(o.out);
@@ -185,7 +186,8 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     }
 
     report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
-    report.markdown += evalPredictionNotes(predictor.highlightGain(), o.shell);
+    report.markdown +=
+        evalPredictionNotes(predictor.highlightGain(), predictor.highlightKnee(), o.shell);
     if (o.headroom) report.markdown += headroomTableMarkdown(report.methods[0], report.headroom);
     if (o.shard.active) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the
@@ -214,7 +216,8 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
               {"methods", methodNames},
               {"prune_alpha", predictor.pruneAlpha()},
               {"shell", o.shell},
-              {"highlight_gain", predictor.highlightGain()}}},
+              {"highlight_gain", predictor.highlightGain()},
+              {"highlight_knee", predictor.highlightKnee()}}},
             {"csv", "metrics." + tag + ".csv"},
             {"sheet_rows", strips},
             {"examples", shardExamples},

@@ -36,6 +36,7 @@ struct EvalOptions {
     float pruneAlpha = -1;      // predict's --prune-alpha; negative: the model's (as predict's)
     bool shell = false;         // predict's --shell
     double highlightGain = -1;  // predict's --highlight-gain; negative: the model's
+    double highlightKnee = 1;   // predict's --highlight-knee
     // Also score "ours" with one part of the truth put in (image/truth_splice.h): how much a
     // perfect MPI, a perfect completion or perfect lamps and windows alone would gain.
     // Not with shards.

@@ -12,4 +12,10 @@ void validateHighlightGain(double gain) {
                          std::to_string(int(kMaxHighlightGain)) + "]");
 }
 
+void validateHighlightKnee(double knee) {
+    if (!(knee >= 1.0 && knee <= kMaxHighlightKnee))  // NaN too
+        throw InputError("--highlight-knee must be in [1, " +
+                         std::to_string(int(kMaxHighlightKnee)) + "] (luminance; 1 is white)");
+}
+
 }  // namespace lh::net

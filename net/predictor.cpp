@@ -70,6 +70,7 @@ struct Predictor::Impl {
     float pruneAlpha = kDefaultPruneAlpha;
     bool shell = false;
     double highlightGain = 1.0;
+    double highlightKnee = 1.0;
 };
 
 Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -78,6 +79,7 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
     if (!(options.pruneAlpha < 1))  // NaN too
         throw InputError("--prune-alpha must be in [0, 1)");
     if (!(options.highlightGain < 0)) validateHighlightGain(options.highlightGain);  // NaN too
+    validateHighlightKnee(options.highlightKnee);
     if (!options.untrainedConfig.empty()) {
         impl_->net = LighthouseNet(NetConfig::byName(options.untrainedConfig));
         impl_->net->to(impl_->device);
@@ -93,11 +95,14 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
     impl_->shell = options.shell;
     impl_->highlightGain =
         options.highlightGain >= 0 ? options.highlightGain : impl_->net->config.highlightGain;
+    impl_->highlightKnee = options.highlightKnee;
 }
 
 float Predictor::pruneAlpha() const { return impl_->pruneAlpha; }
 
 double Predictor::highlightGain() const { return impl_->highlightGain; }
+
+double Predictor::highlightKnee() const { return impl_->highlightKnee; }
 
 Predictor::~Predictor() = default;
 
@@ -122,8 +127,9 @@ Prediction Predictor::predict(const StereoPair& pair) const {
     torch::NoGradGuard noGrad;
     const PipelineOutput out = impl_->net->run(inputs, true);
     // The gain on the cubes, as training applies it, before they become grids.
-    result.volume = cubesToVolume(expandHighlightsInCubes(out.cubes, impl_->highlightGain),
-                                  inputs.layout, impl_->pruneAlpha);
+    result.volume = cubesToVolume(
+        expandHighlightsInCubes(out.cubes, impl_->highlightGain, impl_->highlightKnee),
+        inputs.layout, impl_->pruneAlpha);
     if (impl_->shell)
         result.volume = collapseToShell(result.volume, defaultShellCentre(inputs.layout));
     result.mpiOnly = cubesToVolume(out.mpiCubes, inputs.layout);

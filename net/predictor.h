@@ -68,6 +68,9 @@ struct PredictorOptions {
     // any shell is made; 1: as the network predicts it. Negative: the gain the model was
     // trained under (train --highlight-gain), else 1.
     double highlightGain = -1.0;
+    // The gain expands only what lies above this luminance (net/highlight_gain.h): a voxel of
+    // Y > knee becomes knee + gain (Y - knee). 1: everything above white.
+    double highlightKnee = 1.0;
 };
 
 // The bundled model's path.
@@ -83,6 +86,7 @@ public:
     const NetConfig& config() const;
     float pruneAlpha() const;      // the threshold in use
     double highlightGain() const;  // the gain in use
+    double highlightKnee() const;  // where it starts
     Prediction predict(const StereoPair& pair) const;
 
 private:

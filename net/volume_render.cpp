@@ -136,7 +136,7 @@ std::vector<torch::Tensor> pruneCubesStraightThrough(const std::vector<torch::Te
 }
 
 std::vector<torch::Tensor> expandHighlightsInCubes(const std::vector<torch::Tensor>& cubes,
-                                                   double gain) {
+                                                   double gain, double knee) {
     if (gain == 1.0) return cubes;
     std::vector<torch::Tensor> expanded;
     expanded.reserve(cubes.size());
@@ -144,11 +144,11 @@ std::vector<torch::Tensor> expandHighlightsInCubes(const std::vector<torch::Tens
         const auto rgb = cube.narrow(1, 0, 3);
         const auto y = kLumaR * rgb.narrow(1, 0, 1) + kLumaG * rgb.narrow(1, 1, 1) +
                        kLumaB * rgb.narrow(1, 2, 1);
-        // Where Y <= 1 the factor is exactly 1; the clamp keeps the unused branch finite.
-        const auto above = y > kLampLuminance;
-        const auto safeY = y.clamp_min(kLampLuminance);
-        const auto factor = torch::where(
-            above, (kLampLuminance + gain * (safeY - kLampLuminance)) / safeY, torch::ones_like(y));
+        // Where Y <= knee the factor is exactly 1; the clamp keeps the unused branch finite.
+        const auto above = y > knee;
+        const auto safeY = y.clamp_min(knee);
+        const auto factor =
+            torch::where(above, (knee + gain * (safeY - knee)) / safeY, torch::ones_like(y));
         expanded.push_back(torch::cat({rgb * factor, cube.narrow(1, 3, 1)}, 1));
     }
     return expanded;

@@ -45,10 +45,10 @@ std::vector<torch::Tensor> pruneCubesStraightThrough(const std::vector<torch::Te
                                                      double minAlpha);
 
 // The cubes as predict exports them under a highlight gain (net/highlight_gain.h): each voxel
-// of luminance Y above 1 scaled, hue kept, to 1 + gain (Y - 1); alpha and everything at or
-// below white unchanged. Differentiable. gain 1 returns the cubes unchanged. Validate the gain
-// first (net/highlight_gain.h).
+// of luminance Y above the knee scaled, hue kept, to knee + gain (Y - knee); alpha and
+// everything at or below the knee unchanged. Differentiable. gain 1 returns the cubes
+// unchanged. Validate the gain and the knee first (net/highlight_gain.h).
 std::vector<torch::Tensor> expandHighlightsInCubes(const std::vector<torch::Tensor>& cubes,
-                                                   double gain);
+                                                   double gain, double knee = 1.0);
 
 }  // namespace lh::net

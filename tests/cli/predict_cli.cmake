@@ -112,6 +112,11 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
     COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" -o pred_wide.vdb 2>&1 | grep -q 'warning: the source camera is 3 m from the reference'"
             ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/src.png ${CMAKE_CURRENT_BINARY_DIR}/pair_wide_baseline.json)
   lighthouse_cli_properties(cli.warning.predict_implausible_baseline)
+  # A knee without a gain changes nothing: it runs, and says so.
+  add_test(NAME cli.warning.predict_knee_without_gain
+    COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" --highlight-knee 1.5 -o pred_knee_alone.vdb 2>&1 | grep -q 'warning: --highlight-knee changes nothing without a gain'"
+            ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/src.png ${LH_PAIR}/cameras.json)
+  lighthouse_cli_properties(cli.warning.predict_knee_without_gain)
   lighthouse_cli_ok(predict_output_is_a_volume
     STDOUT "5 level[(]s[)]" "density_L4, color_L4, finest yes"
     ARGS info pred_ok.vdb)
@@ -161,6 +166,12 @@ lighthouse_cli_error(predict_highlight_gain_below_one
   ABSENT pred_dim.vdb
   MAX_MEMORY_MB ${LH_TORCH_MB}
   ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --highlight-gain 0.5 -o pred_dim.vdb)
+# A knee below white would expand the walls: refused, nothing written.
+lighthouse_cli_error(predict_highlight_knee_below_white
+  EXPECT "--highlight-knee"
+  ABSENT pred_knee.vdb
+  MAX_MEMORY_MB ${LH_TORCH_MB}
+  ARGS predict ${LH_PAIR_ARGS} --cameras ${LH_PAIR}/cameras.json --highlight-gain 10 --highlight-knee 0.5 -o pred_knee.vdb)
 lighthouse_cli_error(eval_negative_prune_alpha
   EXPECT "--prune-alpha"
   ABSENT eval_negative_prune

@@ -1,8 +1,10 @@
 // `lighthouse eval`'s headroom rows on a tiny data set and an untrained model: each row is
 // ours with one part of the truth put in, so the part put in scores perfectly and the rest
-// scores as ours. And --shell, which changes ours and nothing else.
+// scores as ours. And --shell, which changes ours and nothing else; and the notes that say how
+// ours was predicted.
 #include "net/evaluation.h"
 #include "core/errors.h"
+#include "net/eval_table.h"
 #include "net/lighthouse_net.h"
 #include "tests/net/tiny_training_set.h"
 
@@ -84,6 +86,19 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     fs::remove_all(data);
     fs::remove(model);
     fs::remove_all(out);
+}
+
+TEST(Evaluation, TheNotesSayHowOursWasPredicted) {
+    EXPECT_EQ(evalPredictionNotes(1.0, 1.0, false), "");
+    EXPECT_NE(
+        evalPredictionNotes(10.0, 1.0, false).find("above white, times 10 (`--highlight-gain`)"),
+        std::string::npos);
+    EXPECT_NE(evalPredictionNotes(30.0, 1.25, false)
+                  .find("above luminance 1.25, times 30 (`--highlight-gain`, `--highlight-knee`)"),
+              std::string::npos);
+    // A knee without a gain changes nothing, so it is not noted.
+    EXPECT_EQ(evalPredictionNotes(1.0, 1.25, false), "");
+    EXPECT_NE(evalPredictionNotes(1.0, 1.0, true).find("`--shell`"), std::string::npos);
 }
 
 }  // namespace

@@ -57,5 +57,33 @@ TEST(HighlightGain, GainOneChangesNothingAndBadGainsAreRefused) {
         EXPECT_THROW(validateHighlightGain(bad), InputError) << bad;
 }
 
+TEST(HighlightGain, AKneeExpandsOnlyWhatIsAboveIt) {
+    const auto cube = threeVoxels();
+    const double knee = 1.8;
+    const auto v = expandHighlightsInCubes({cube}, 10.0, knee)[0];
+    // The orange lamp (luminance 1.7106) is above white but below the knee: unchanged.
+    EXPECT_EQ(at(v, 0, 2), 3.0);
+    EXPECT_EQ(at(v, 1, 2), 1.5);
+    // The grey lamp: 1.8 + 10 * (2 - 1.8) = 3.8, grey stays grey.
+    EXPECT_NEAR(at(v, 0, 1), 3.8, 1e-4);
+    EXPECT_NEAR(at(v, 1, 1), 3.8, 1e-4);
+    // Continuous at the knee: a voxel just above it barely changes.
+    const auto justAbove = torch::tensor({1.81f, 1.81f, 1.81f, 0.5f}).view({1, 4, 1, 1, 1});
+    EXPECT_NEAR(expandHighlightsInCubes({justAbove}, 10.0, knee)[0][0][0][0][0][0].item<double>(),
+                1.8 + 10 * 0.01, 1e-4);
+    // Knee 1 is the plain gain.
+    EXPECT_TRUE(torch::allclose(expandHighlightsInCubes({cube}, 10.0, 1.0)[0],
+                                expandHighlightsInCubes({cube}, 10.0)[0]));
+}
+
+TEST(HighlightGain, BadKneesAreRefused) {
+    EXPECT_NO_THROW(validateHighlightKnee(1.0));
+    EXPECT_NO_THROW(validateHighlightKnee(kMaxHighlightKnee));
+    for (double bad :
+         {0.99, 0.0, -1.0, kMaxHighlightKnee * 1.01, std::numeric_limits<double>::quiet_NaN(),
+          std::numeric_limits<double>::infinity()})
+        EXPECT_THROW(validateHighlightKnee(bad), InputError) << bad;
+}
+
 }  // namespace
 }  // namespace lh::net

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -201,6 +202,47 @@ TEST_F(PredictionTest, ShellKeepsTheEnvmapSeenFromItsCentre) {
     EXPECT_GT(std::sqrt(black / n) / (sum / n), 0.9);
 }
 
+// How many of a prediction's colour voxels lie above the knee, above white up to the knee, and
+// at or below white.
+struct VoxelLuminances {
+    long long aboveKnee = 0, aboveWhiteUpToKnee = 0, atOrBelowWhite = 0;
+};
+
+// Checks every voxel of `expanded` against `plain`: above the knee its luminance is
+// knee + gain (Y - knee); at or below the knee it is unchanged. Counts them.
+VoxelLuminances expectExpandedAboveKnee(const Prediction& plain, const Prediction& expanded,
+                                        double gain, double knee) {
+    VoxelLuminances counts;
+    for (size_t k = 0; k < plain.volume.levels.size(); ++k) {
+        const auto& before = plain.volume.levels[k].color->tree();
+        const auto& after = expanded.volume.levels[k].color->tree();
+        for (auto it = before.cbeginValueOn(); it; ++it) {
+            const openvdb::Vec3s c = *it, g = after.getValue(it.getCoord());
+            const double y = rec709Luminance(c.asPointer());
+            if (y > knee) {
+                ++counts.aboveKnee;
+                const double expected = knee + gain * (y - knee);
+                EXPECT_NEAR(rec709Luminance(g.asPointer()), expected, 1e-3 * (1 + expected));
+            } else {
+                ++(y > 1.0 ? counts.aboveWhiteUpToKnee : counts.atOrBelowWhite);
+                EXPECT_EQ(g, c);
+            }
+        }
+    }
+    return counts;
+}
+
+// The brightest luminance of a prediction's voxels.
+double brightestVoxel(const Prediction& p) {
+    double brightest = 0;
+    for (const auto& level : p.volume.levels)
+        for (auto it = level.color->cbeginValueOn(); it; ++it) {
+            const openvdb::Vec3s c = *it;
+            brightest = std::max(brightest, rec709Luminance(c.asPointer()));
+        }
+    return brightest;
+}
+
 TEST_F(PredictionTest, HighlightGainBrightensOnlyVoxelsAboveWhite) {
     const std::string path = savedModel(test::tinyHdrConfig(), "lighthouse_prediction_hdr.pt");
     const StereoPair pair = brightPlanePair();
@@ -210,24 +252,29 @@ TEST_F(PredictionTest, HighlightGainBrightensOnlyVoxelsAboveWhite) {
                      bright = Predictor(gained).predict(pair);
     std::filesystem::remove(path);
     expectFinitePrediction(bright);
-    long long above = 0, below = 0;
-    for (size_t k = 0; k < plain.volume.levels.size(); ++k) {
-        const auto& before = plain.volume.levels[k].color->tree();
-        const auto& after = bright.volume.levels[k].color->tree();
-        for (auto it = before.cbeginValueOn(); it; ++it) {
-            const openvdb::Vec3s c = *it, g = after.getValue(it.getCoord());
-            const double y = rec709Luminance(c.asPointer());
-            if (y > 1.0) {
-                ++above;
-                EXPECT_NEAR(rec709Luminance(g.asPointer()), 1 + 20 * (y - 1), 1e-3 * (1 + 20 * y));
-            } else {
-                ++below;
-                EXPECT_EQ(g, c);
-            }
-        }
-    }
-    EXPECT_GT(above, 0) << "the test pair gave no voxel above white";
-    EXPECT_GT(below, 0);
+    const VoxelLuminances counts = expectExpandedAboveKnee(plain, bright, 20.0, 1.0);
+    EXPECT_GT(counts.aboveKnee, 0) << "the test pair gave no voxel above white";
+    EXPECT_GT(counts.atOrBelowWhite, 0);
+}
+
+TEST_F(PredictionTest, AHighlightKneeLeavesTheVoxelsBelowItAsTheyWere) {
+    const std::string path = savedModel(test::tinyHdrConfig(), "lighthouse_prediction_knee.pt");
+    const StereoPair pair = brightPlanePair();
+    PredictorOptions plainOptions{path, "cpu", 2, ""}, kneed = plainOptions;
+    const Prediction plain = Predictor(plainOptions).predict(pair);
+    // Halfway between white and the brightest voxel: voxels on both sides of the knee.
+    const double knee = 0.5 * (1.0 + brightestVoxel(plain));
+    ASSERT_GT(knee, 1.0) << "the test pair gave no voxel above white";
+    kneed.highlightGain = 20.0;
+    kneed.highlightKnee = knee;
+    const Predictor predictor(kneed);
+    EXPECT_DOUBLE_EQ(predictor.highlightKnee(), knee);
+    const Prediction bright = predictor.predict(pair);
+    std::filesystem::remove(path);
+    expectFinitePrediction(bright);
+    const VoxelLuminances counts = expectExpandedAboveKnee(plain, bright, 20.0, knee);
+    EXPECT_GT(counts.aboveKnee, 0);
+    EXPECT_GT(counts.aboveWhiteUpToKnee, 0) << "no voxel between white and the knee";
 }
 
 TEST_F(PredictionTest, AppliesTheHighlightGainTheModelWasTrainedUnderUnlessToldOtherwise) {
@@ -262,6 +309,9 @@ TEST(PredictorOptionsTest, UnknownDeviceOrMissingModelIsAClearError) {
     PredictorOptions dim{"", "cpu", 1, ""};
     dim.highlightGain = 0.5;
     EXPECT_THROW(Predictor{dim}, InputError);
+    PredictorOptions wallsToo{"", "cpu", 1, ""};
+    wallsToo.highlightKnee = 0.5;
+    EXPECT_THROW(Predictor{wallsToo}, InputError);
 }
 
 }  // namespace

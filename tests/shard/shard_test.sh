@@ -48,10 +48,12 @@ if [ "$net" = --net ]; then
     echo "eval: 2 shards + merge = one run"
 
     # The merged table keeps the note on how "ours" was predicted.
-    lh eval --data one --no-oracle --highlight-gain 10 -o gain_one >/dev/null 2>&1
-    for k in 0 1; do lh eval --data one --no-oracle --highlight-gain 10 -o gain_two --shard $k/2 >/dev/null 2>&1; done
+    gain=(--highlight-gain 10 --highlight-knee 1.5)
+    lh eval --data one --no-oracle "${gain[@]}" -o gain_one >/dev/null 2>&1
+    for k in 0 1; do lh eval --data one --no-oracle "${gain[@]}" -o gain_two --shard $k/2 >/dev/null 2>&1; done
     lh merge gain_two >/dev/null 2>&1
-    grep -q 'times 10 (`--highlight-gain`)' gain_one/table.md || fail "eval --highlight-gain did not note the gain"
+    grep -q 'above luminance 1.5, times 10 (`--highlight-gain`, `--highlight-knee`)' gain_one/table.md ||
+        fail "eval --highlight-gain --highlight-knee did not note the gain"
     for f in table.md metrics.csv; do same_file gain_one/$f gain_two/$f; done
-    echo "eval --highlight-gain: 2 shards + merge = one run"
+    echo "eval --highlight-gain --highlight-knee: 2 shards + merge = one run"
 fi
