@@ -35,7 +35,7 @@ std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::siz
                               const std::string& data, const std::string& configName);
 
 // The notes under Table 2 on how "ours" was predicted, when not as predict does by default:
-// --highlight-gain (a gain other than 1, from --highlight-knee) and --shell. Empty when
+// --highlight-gain (a gain other than 1, with its --highlight-knee) and --shell. Empty when
 // neither.
 std::string evalPredictionNotes(double highlightGain, double highlightKnee, bool shell);
 
