@@ -34,6 +34,8 @@ struct CompareOptions {
     std::string mask;
     bool batch = false;
     std::string csv;
+    // How far a predicted highlight may lie from a true one and still match, in degrees.
+    double highlightRadius = kHighlightRadiusDegrees;
 };
 
 // One ground-truth envmap of a batch and the files that go with it.
@@ -43,15 +45,22 @@ struct EnvmapPair {
     std::string mask;  // "" when the ground truth has no env_<k>_mask.png beside it
 };
 
-// Loads and compares one pair; metric errors (sizes, NaN) are prefixed with both file names.
+// Loads and compares one pair, highlights matched within `highlightRadius` degrees; metric
+// errors (sizes, NaN) are prefixed with both file names.
 EnvmapMetrics compareFiles(const std::string& predPath, const std::string& gtPath,
-                           const std::string& maskPath) {
+                           const std::string& maskPath, double highlightRadius) {
     const ImageRGB pred = readImage(predPath);
     const ImageRGB gt = readImage(gtPath);
     std::vector<std::uint8_t> mask;
     if (!maskPath.empty()) mask = loadMask(maskPath, gt.width, gt.height);
     try {
-        return compareEnvmaps(pred, gt, maskPath.empty() ? nullptr : &mask);
+        EnvmapMetrics m = compareEnvmaps(pred, gt, maskPath.empty() ? nullptr : &mask);
+        if (highlightRadius != kHighlightRadiusDegrees) {
+            const HighlightMatch h = matchHighlights(pred, gt, highlightRadius);
+            m.highlightRecall = h.recall;
+            m.highlightPrecision = h.precision;
+        }
+        return m;
     } catch (const InputError& e) {
         throw InputError("'" + predPath + "' vs '" + gtPath + "': " + e.what());
     }
@@ -110,9 +119,9 @@ void printDisplayBias(double bias) {
 // The lamps and windows (image/highlights.h), one line below the table: recall and precision,
 // "none" where no envmap has a highlight on the side the share is taken of (the truth for the
 // recall, the prediction for the precision).
-void printHighlights(const std::string& recall, const std::string& precision) {
-    std::cout << "lamps and windows (luminance > 1) within " << kHighlightRadiusDegrees
-              << " deg: recall " << recall << ", precision " << precision << "\n";
+void printHighlights(double radius, const std::string& recall, const std::string& precision) {
+    std::cout << "lamps and windows (luminance > 1) within " << radius << " deg: recall " << recall
+              << ", precision " << precision << "\n";
 }
 
 std::string highlightText(double share) {
@@ -125,12 +134,13 @@ std::string highlightText(const std::vector<double>& shares, int total) {
 }
 
 void compareSingle(const CompareOptions& o) {
-    const EnvmapMetrics m = compareFiles(o.pred, o.gt, o.mask);
+    const EnvmapMetrics m = compareFiles(o.pred, o.gt, o.mask, o.highlightRadius);
     printHeader();
     printRow("all content", formatMetric(m.psnrAll), formatMetric(m.angularAll),
              formatMetric(m.logLuminanceAll), formatMetric(m.irradianceError),
              formatMetric(m.radianceRatio));
-    printHighlights(highlightText(m.highlightRecall), highlightText(m.highlightPrecision));
+    printHighlights(o.highlightRadius, highlightText(m.highlightRecall),
+                    highlightText(m.highlightPrecision));
     if (o.mask.empty()) return;
     if (std::isnan(m.psnrObserved))
         std::cout << padded("observed content", 20) << "no observed pixels in '" << o.mask << "'\n";
@@ -231,7 +241,7 @@ void compareBatch(const CompareOptions& o) {
     std::vector<double> psnrUnobserved, biasUnobserved, highlightRecall, highlightPrecision;
     int withMask = 0;
     for (const EnvmapPair& p : pairs) {
-        const EnvmapMetrics m = compareFiles(p.pred, p.gt, p.mask);
+        const EnvmapMetrics m = compareFiles(p.pred, p.gt, p.mask, o.highlightRadius);
         metrics.push_back(m);
         psnrAll.push_back(m.psnrAll);
         angularAll.push_back(m.angularAll);
@@ -269,7 +279,7 @@ void compareBatch(const CompareOptions& o) {
                  "-", "-");
         printDisplayBias(meanStd(biasUnobserved).mean);
     }
-    printHighlights(highlightText(highlightRecall, total),
+    printHighlights(o.highlightRadius, highlightText(highlightRecall, total),
                     highlightText(highlightPrecision, total));
     if (csv) std::cout << "per-envmap rows: " << csv->finalPath() << "\n";
 }
@@ -295,6 +305,12 @@ void addCompareCommand(CLI::App& app) {
         ->excludes(batch);
     cmd->add_option("--csv", o->csv, "With --batch, write one row of metrics per envmap")
         ->needs(batch);
+    cmd->add_option("--highlight-radius", o->highlightRadius,
+                    "Degrees within which a predicted lamp or window matches a true one, for the "
+                    "highlight recall and precision (a wider radius forgives a lamp drawn too "
+                    "wide or a little off)")
+        ->check(CLI::Range(0.1, 180.0))
+        ->capture_default_str();
     cmd->callback([o] { o->batch ? compareBatch(*o) : compareSingle(*o); });
 }
 

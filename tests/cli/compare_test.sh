@@ -80,6 +80,11 @@ ok --stdout "$highlights none, precision none$" -- "$lh" compare scaled_0.001.ex
 ok --stdout "$highlights 0[.]00, precision none$" -- "$lh" compare scaled_0.001.exr a_000.exr
 ok --stdout "$highlights none, precision 0[.]00$" -- "$lh" compare scaled_1000.exr scaled_0.001.exr
 ok --stdout "$highlights 1[.]00, precision 0[.][0-9]{2}$" -- "$lh" compare scaled_1000.exr a_000.exr
+# A radius of 180 degrees matches any highlight to any other: the envmap that is white all
+# over now has precision 1 against the one with a lamp. A radius of 0 matches nothing: refused.
+ok --stdout "^lamps and windows [(]luminance > 1[)] within 180 deg: recall 1[.]00, precision 1[.]00$" \
+   -- "$lh" compare scaled_1000.exr a_000.exr --highlight-radius 180
+error --expect "--highlight-radius" -- "$lh" compare scaled_1000.exr a_000.exr --highlight-radius 0
 out=$("$lh" compare a_000.exr a_001.exr --mask mask_all.png 2>&1)
 psnr_all=$(value_of all 3 <<<"$out")
 [ "$psnr_all" != inf ] && [ -n "$psnr_all" ] || fail "different envmaps: PSNR '$psnr_all'"
