@@ -54,13 +54,7 @@ EnvmapMetrics compareFiles(const std::string& predPath, const std::string& gtPat
     std::vector<std::uint8_t> mask;
     if (!maskPath.empty()) mask = loadMask(maskPath, gt.width, gt.height);
     try {
-        EnvmapMetrics m = compareEnvmaps(pred, gt, maskPath.empty() ? nullptr : &mask);
-        if (highlightRadius != kHighlightRadiusDegrees) {
-            const HighlightMatch h = matchHighlights(pred, gt, highlightRadius);
-            m.highlightRecall = h.recall;
-            m.highlightPrecision = h.precision;
-        }
-        return m;
+        return compareEnvmaps(pred, gt, maskPath.empty() ? nullptr : &mask, highlightRadius);
     } catch (const InputError& e) {
         throw InputError("'" + predPath + "' vs '" + gtPath + "': " + e.what());
     }

@@ -217,7 +217,7 @@ std::string metricColumnsCsvHeader() {
 }
 
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
-                             const std::vector<std::uint8_t>* mask) {
+                             const std::vector<std::uint8_t>* mask, double highlightRadiusDegrees) {
     EnvmapMetrics m{psnr(pred, gt),
                     angularErrorDegrees(pred, gt),
                     kNaN,
@@ -236,7 +236,7 @@ EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
         m.displayBiasUnobserved = biasOf(invented);
     }
     m.radianceRatio = meanRadianceRatio(pred, gt);
-    const HighlightMatch highlights = matchHighlights(pred, gt);
+    const HighlightMatch highlights = matchHighlights(pred, gt, highlightRadiusDegrees);
     m.highlightRecall = highlights.recall;
     m.highlightPrecision = highlights.precision;
     return m;

@@ -10,6 +10,7 @@
 // one entry per pixel, or the functions throw InputError.
 #pragma once
 
+#include "image/highlights.h"
 #include "image/image.h"
 
 #include <array>
@@ -94,13 +95,15 @@ struct EnvmapMetrics {
     double psnrUnobserved = std::numeric_limits<double>::quiet_NaN();         // dB
     double displayBiasUnobserved = std::numeric_limits<double>::quiet_NaN();  // sRGB units
     // Lamps and windows (image/highlights.h): the shares of the true and the predicted
-    // highlights that the other shows within kHighlightRadiusDegrees.
+    // highlights that the other shows within the radius compareEnvmaps was given.
     double highlightRecall = std::numeric_limits<double>::quiet_NaN();     // ratio
     double highlightPrecision = std::numeric_limits<double>::quiet_NaN();  // ratio
 };
 
+// Highlights are matched within `highlightRadiusDegrees` (image/highlights.h).
 EnvmapMetrics compareEnvmaps(const ImageRGB& pred, const ImageRGB& gt,
-                             const std::vector<std::uint8_t>* mask = nullptr);
+                             const std::vector<std::uint8_t>* mask = nullptr,
+                             double highlightRadiusDegrees = kHighlightRadiusDegrees);
 
 // The numbers of `m` in the column order of `compare --csv` and eval's metrics.csv, and those
 // columns' names. New columns go at the end, so scripts that index the first ones keep working.
