@@ -39,10 +39,11 @@ void addEvalCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--highlight-knee", o->highlightKnee, "As predict's --highlight-knee")
         ->check(CLI::Range(1.0, net::kMaxHighlightKnee))
         ->capture_default_str();
-    cmd->add_flag("--headroom", o->headroom,
-                  "Also score ours with one part of the truth put in (the observed pixels, the "
-                  "unobserved ones, the lamps and windows, the observed lamps and windows): what "
-                  "a perfect job on each part alone would gain; not with --shard");
+    cmd->add_flag(
+        "--headroom", o->headroom,
+        "Also score ours with one part of the truth put in (the observed pixels, the "
+        "unobserved ones, the lamps and windows, the observed and the unobserved lamps and "
+        "windows): what a perfect job on each part alone would gain; not with --shard");
     auto shard = std::make_shared<std::string>();
     cmd->add_option(
         "--shard", *shard,

@@ -17,6 +17,8 @@ const char* truthPartName(TruthPart part) {
             return "true lamps and windows (luminance > 1)";
         case TruthPart::ObservedLampsAndWindows:
             return "true observed lamps and windows";
+        case TruthPart::UnobservedLampsAndWindows:
+            return "true unobserved lamps and windows";
     }
     return "?";
 }
@@ -47,6 +49,9 @@ ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPar
                 break;
             case TruthPart::ObservedLampsAndWindows:
                 take = observed[i] != 0 && isLampOrWindow(t);
+                break;
+            case TruthPart::UnobservedLampsAndWindows:
+                take = observed[i] == 0 && isLampOrWindow(t);
                 break;
         }
         if (take) std::copy(t, t + 3, &out.pixels[3 * i]);

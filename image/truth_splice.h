@@ -2,8 +2,9 @@
 // say how much a perfect job on that part alone would gain. `lighthouse eval --headroom` scores
 // four parts: the observed pixels (what a perfect MPI would give), the unobserved ones (a
 // perfect completion), the lamps and windows (the pixels whose true luminance is above 1,
-// where photos clip and which hold most of a room's light), and the observed lamps and windows
-// alone (how bright the MPI should make what the photo clipped).
+// where photos clip and which hold most of a room's light), the observed lamps and windows
+// alone (how bright the MPI should make what the photo clipped), and the unobserved ones alone
+// (the lamps and windows the completion has to invent).
 #pragma once
 
 #include "image/image.h"
@@ -13,12 +14,18 @@
 
 namespace lh {
 
-enum class TruthPart { Observed, Unobserved, LampsAndWindows, ObservedLampsAndWindows };
+enum class TruthPart {
+    Observed,
+    Unobserved,
+    LampsAndWindows,
+    ObservedLampsAndWindows,
+    UnobservedLampsAndWindows
+};
 
 // Every part, in the order the tables list them.
 constexpr TruthPart kTruthParts[] = {TruthPart::Observed, TruthPart::Unobserved,
-                                     TruthPart::LampsAndWindows,
-                                     TruthPart::ObservedLampsAndWindows};
+                                     TruthPart::LampsAndWindows, TruthPart::ObservedLampsAndWindows,
+                                     TruthPart::UnobservedLampsAndWindows};
 
 // A line for a table: "true observed pixels", ...
 const char* truthPartName(TruthPart part);

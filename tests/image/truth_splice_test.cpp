@@ -45,6 +45,10 @@ TEST(TruthSplice, EachPartTakesItsPixelsFromTheTruthAndKeepsTheRest) {
                                      k.observed)),
               (std::vector<float>{0.1f, 2.0f, 0.1f, 0.1f}))
         << "only the observed pixel whose true luminance is above 1";
+    EXPECT_EQ(Case::reds(spliceTruth(k.prediction, k.truth, TruthPart::UnobservedLampsAndWindows,
+                                     k.observed)),
+              (std::vector<float>{0.1f, 0.1f, 3.0f, 0.1f}))
+        << "only the unobserved pixel whose true luminance is above 1";
 }
 
 TEST(TruthSplice, MismatchedSizesAreAClearError) {
@@ -58,6 +62,8 @@ TEST(TruthSplice, EveryPartHasItsOwnName) {
     EXPECT_STRNE(truthPartName(TruthPart::Unobserved), truthPartName(TruthPart::LampsAndWindows));
     EXPECT_STRNE(truthPartName(TruthPart::LampsAndWindows),
                  truthPartName(TruthPart::ObservedLampsAndWindows));
+    EXPECT_STRNE(truthPartName(TruthPart::ObservedLampsAndWindows),
+                 truthPartName(TruthPart::UnobservedLampsAndWindows));
 }
 
 }  // namespace

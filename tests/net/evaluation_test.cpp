@@ -40,7 +40,7 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     std::ostringstream progress;
     const EvalReport report = evaluate(o, progress);
 
-    ASSERT_EQ(report.headroom.size(), 4u);
+    ASSERT_EQ(report.headroom.size(), 5u);
     const MethodScores& ours = report.methods[0];
     const MethodScores &observed = report.headroom[0], &unobserved = report.headroom[1];
     ASSERT_EQ(observed.psnrAll.size(), ours.psnrAll.size());
@@ -66,6 +66,11 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
         EXPECT_EQ(lamps.highlightRecall[i], 1.0);
     }
     EXPECT_GT(withHighlights, 0) << "no envmap with a lamp or window to test on";
+    // The unobserved lamps and windows change only unobserved pixels.
+    const MethodScores& unseenLamps = report.headroom[4];
+    for (size_t i = 0; i < ours.psnrObserved.size(); ++i)
+        if (!std::isnan(ours.psnrObserved[i]))
+            EXPECT_EQ(unseenLamps.psnrObserved[i], ours.psnrObserved[i]);
     EXPECT_NE(report.markdown.find("| method | highlight recall | highlight precision |"),
               std::string::npos)
         << report.markdown;
