@@ -1,6 +1,6 @@
 // Headroom of a predictor: its envmap with one part of the truth put in, so that the metrics
 // say how much a perfect job on that part alone would gain. `lighthouse eval --headroom` scores
-// four parts: the observed pixels (what a perfect MPI would give), the unobserved ones (a
+// five parts: the observed pixels (what a perfect MPI would give), the unobserved ones (a
 // perfect completion), the lamps and windows (the pixels whose true luminance is above 1,
 // where photos clip and which hold most of a room's light), the observed lamps and windows
 // alone (how bright the MPI should make what the photo clipped), and the unobserved ones alone
