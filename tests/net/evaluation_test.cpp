@@ -71,6 +71,9 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     for (size_t i = 0; i < ours.psnrObserved.size(); ++i)
         if (!std::isnan(ours.psnrObserved[i]))
             EXPECT_EQ(unseenLamps.psnrObserved[i], ours.psnrObserved[i]);
+    EXPECT_NE(report.markdown.find("| ours + true unobserved lamps and windows |"),
+              std::string::npos)
+        << report.markdown;
     EXPECT_NE(report.markdown.find("| method | highlight recall | highlight precision |"),
               std::string::npos)
         << report.markdown;
