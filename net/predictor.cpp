@@ -61,6 +61,13 @@ std::vector<std::string> stereoPairWarnings(const StereoPair& pair) {
                       baseline, *c.near);
         warnings.push_back(text);
     }
+    // The same photo given twice has no parallax: the plane sweep then sees every depth as
+    // equally consistent, and the MPI's depths are guesses.
+    if (pair.ref.width == pair.src.width && pair.ref.height == pair.src.height &&
+        pair.ref.pixels == pair.src.pixels)
+        warnings.push_back(
+            "the reference and source images are identical: with no parallax the network cannot "
+            "see depth (give the second photo of the pair as --src)");
     return warnings;
 }
 

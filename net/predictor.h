@@ -32,7 +32,8 @@ void validateStereoPair(const StereoPair& pair);
 // world-to-camera matrix given as cam_to_world). Metres.
 constexpr double kImplausibleBaseline = 1.0;
 // Warnings (one line each, without "warning: ") for a pair that runs but is unlike what the
-// method expects: a baseline above kImplausibleBaseline, or above the near depth.
+// method expects: a baseline above kImplausibleBaseline, or above the near depth, or the same
+// photo given as both views.
 std::vector<std::string> stereoPairWarnings(const StereoPair& pair);
 
 struct Prediction {

@@ -112,6 +112,11 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
     COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" -o pred_wide.vdb 2>&1 | grep -q 'warning: the source camera is 3 m from the reference'"
             ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/src.png ${CMAKE_CURRENT_BINARY_DIR}/pair_wide_baseline.json)
   lighthouse_cli_properties(cli.warning.predict_implausible_baseline)
+  # The same photo as both views runs, with a warning that there is no parallax.
+  add_test(NAME cli.warning.predict_identical_photos
+    COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$1\" --cameras \"$2\" -o pred_same.vdb 2>&1 | grep -q 'warning: the reference and source images are identical'"
+            ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/cameras.json)
+  lighthouse_cli_properties(cli.warning.predict_identical_photos)
   # A knee without a gain changes nothing: it runs, and says so.
   add_test(NAME cli.warning.predict_knee_without_gain
     COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" --highlight-knee 1.5 -o pred_knee_alone.vdb 2>&1 | grep -q 'warning: --highlight-knee changes nothing without a gain'"
