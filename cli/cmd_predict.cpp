@@ -255,6 +255,13 @@ void runPredict(const PredictOptions& o, int threads) {
               << " active voxels (alpha >= " << predictor.pruneAlpha() << gainNote.str()
               << (o.shell ? ", collapsed into a shell" : "") << "), MPI of " << p.mpi.planeCount()
               << " planes -> " << o.output << "\n";
+    for (size_t k = 0; k < p.emitters.size(); ++k) {
+        const net::PredictedEmitter& e = p.emitters[k];
+        std::cerr << "predict: emitter " << k + 1 << " at (" << e.position.x() << ", "
+                  << e.position.y() << ", " << e.position.z() << ") m, radius " << e.radius
+                  << " m, opacity " << e.alpha << ", radiance (" << e.radiance.x() << ", "
+                  << e.radiance.y() << ", " << e.radiance.z() << ")\n";
+    }
     if (!points.empty()) {
         const RenderVolume prepared(p.volume);
         for (size_t i = 0; i < points.size(); ++i) {

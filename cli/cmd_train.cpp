@@ -32,7 +32,8 @@ void addTrainCommand(CLI::App& app, const int& threads) {
            "--config", o->config,
            "standard (5 x 64^3 from 192x144, 32 planes, HDR), wide (standard with completion "
            "networks twice as wide), paper, or small; a '+profile' suffix (wide+profile) also "
-           "gives the completion networks the observed colour at each height of the room")
+           "gives the completion networks the observed colour at each height of the room, and "
+           "'+emitters' (wide+emitters) adds a head that places 3 compact lamps in the volume")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->out,
                     "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")
@@ -47,7 +48,8 @@ void addTrainCommand(CLI::App& app, const int& threads) {
     cmd->add_flag("--init-partial", o->initPartial,
                   "With --init of another configuration: start from its parameters wherever name "
                   "and shape match (a standard model's MPI network for --config wide; all of a "
-                  "wide model for wide+profile, the new inputs zero-weighted), the rest fresh");
+                  "wide model for wide+profile, the new inputs zero-weighted; all but the "
+                  "emitter head for wide+emitters), the rest fresh");
     cmd->add_flag("--init-widen", o->initWiden,
                   "With --init of a model whose completion networks are half as wide (standard "
                   "for --config wide): start from the same predictions, each channel split in two");

@@ -3,6 +3,7 @@
 #include "core/errors.h"
 
 #include <nlohmann/json.hpp>
+#include <utility>
 
 namespace lh::net {
 
@@ -73,10 +74,20 @@ NetConfig NetConfig::paper() {
 }
 
 NetConfig NetConfig::byName(const std::string& name) {
-    const std::string suffix = "+profile";
-    const bool profile = name.size() > suffix.size() &&
-                         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-    const std::string base = profile ? name.substr(0, name.size() - suffix.size()) : name;
+    // The base name, then any of the suffixes.
+    std::string base = name;
+    bool profile = false, emitters = false;
+    for (bool found = true; found;) {
+        found = false;
+        for (auto [suffix, flag] : {std::pair<std::string, bool*>{"+profile", &profile},
+                                    std::pair<std::string, bool*>{"+emitters", &emitters}}) {
+            if (!*flag && base.size() > suffix.size() &&
+                base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0) {
+                base.resize(base.size() - suffix.size());
+                *flag = found = true;
+            }
+        }
+    }
     NetConfig c;
     if (base == "standard")
         c = standard();
@@ -89,9 +100,10 @@ NetConfig NetConfig::byName(const std::string& name) {
     else
         throw InputError("unknown configuration '" + name +
                          "' (expected 'standard', 'wide', 'small' or 'paper', optionally with "
-                         "'+profile')");
+                         "'+profile' and '+emitters')");
     c.name = name;
     c.heightProfile = profile;
+    c.emitters = emitters ? kSuffixEmitters : 0;
     return c;
 }
 
@@ -119,6 +131,9 @@ void NetConfig::validate() const {
         throw InputError("the model's pruning threshold (voxel alpha) must be in [0, 1)");
     if (!(highlightGain >= 1 && highlightGain <= kMaxHighlightGain))
         throw InputError("the model's highlight gain must be in [1, 1000]");
+    if (emitters < 0 || emitters > kMaxEmitters)
+        throw InputError("the emitter count must be in [0, " + std::to_string(kMaxEmitters) + "]");
+    if (emitters > 0 && !hdr) throw InputError("emitters need HDR colours");
     if (completionScale != 1 && completionScale != 2)
         throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
@@ -144,6 +159,7 @@ std::string NetConfig::toJson() const {
                               {"hdr", hdr},
                               {"colour_anchor", colourAnchor},
                               {"height_profile", heightProfile},
+                              {"emitters", emitters},
                               {"prune_alpha", pruneAlpha},
                               {"highlight_gain", highlightGain}};
     return j.dump();
@@ -181,6 +197,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.hdr = j.value("hdr", false);
         c.colourAnchor = j.value("colour_anchor", false);
         c.heightProfile = j.value("height_profile", false);
+        c.emitters = j.value("emitters", 0);
         c.pruneAlpha = j.value("prune_alpha", 0.0);
         c.highlightGain = j.value("highlight_gain", 1.0);
     } catch (const nlohmann::json::exception& e) {

@@ -20,6 +20,11 @@ constexpr double kMaxHighlightGain = 1000.0;
 // Largest knee (net/highlight_gain.h): a luminance of 100 is already a lamp in any exposure.
 constexpr double kMaxHighlightKnee = 100.0;
 
+// Emitters of a "+emitters" configuration: the training rooms have 1-3 ceiling lights and 1-3
+// windows, of which the photo shows some.
+constexpr int kSuffixEmitters = 3;
+constexpr int kMaxEmitters = 16;
+
 struct NetConfig {
     std::string name = "small";
     int width = 128;      // network input width, pixels (multiple of 16: four stride-2 stages)
@@ -51,6 +56,9 @@ struct NetConfig {
     // The completion networks also see the observed colour at each height of the room
     // (net/height_profile.h): 4 more input channels each. Named by a "+profile" suffix.
     bool heightProfile = false;
+    // Lamps placed by an emitter head beside the completion networks (net/emitter_head.h):
+    // how many; 0 for none. Named by a "+emitters" suffix (kSuffixEmitters of them).
+    int emitters = 0;
     // Voxel alpha below which the model's volumes are left empty: the threshold it was trained
     // under (train --prune-alpha), so predict prunes there by default and the walls it learnt
     // to make opaque survive. 0: trained unpruned; predict uses its own default.
@@ -64,8 +72,9 @@ struct NetConfig {
     static NetConfig paper();
     static NetConfig standard();
     static NetConfig wide();
-    // "standard", "wide", "small" or "paper", each optionally with "+profile" (heightProfile on);
-    // throws InputError otherwise.
+    // "standard", "wide", "small" or "paper", each optionally followed by "+profile"
+    // (heightProfile on) and "+emitters" (kSuffixEmitters emitters), in either order; throws
+    // InputError otherwise.
     static NetConfig byName(const std::string& name);
 
     // Throws InputError naming the bad size.

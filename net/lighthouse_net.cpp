@@ -43,6 +43,7 @@ LighthouseNetImpl::LighthouseNetImpl(const NetConfig& c) : config(c) {
         completion.push_back(register_module(
             "completion" + std::to_string(k),
             UNet3d((k == 0 ? 4 : 8) + positionChannels + profileChannels, 5, c.baseWidth)));
+    if (c.emitters > 0) emitterHead = register_module("emitter_head", EmitterHead(c.emitters));
 }
 
 torch::Tensor LighthouseNetImpl::logColourAnchor(const torch::Tensor& refLinear) const {
@@ -178,6 +179,15 @@ PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) 
         result.mpiCubes.push_back(resampleMpiToLevel(result.mpi, in.depths, in.ref, in.layout, k,
                                                      config.hdr ? kMaxMpiRadiance : 1.0));
     if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout, logAnchor);
+    if (runCompletion && emitterHead) {
+        const auto& rgb = in.refLinear;
+        const auto photoLuminance =
+            (0.2126 * rgb.select(1, 0) + 0.7152 * rgb.select(1, 1) + 0.0722 * rgb.select(1, 2))
+                .mean()
+                .clamp_min(1e-3);
+        result.emitters = emitterHead(result.cubes[0], in.layout, photoLuminance);
+        result.cubes = addEmitters(result.cubes, result.emitters, in.layout);
+    }
     return result;
 }
 

@@ -5,6 +5,7 @@
 #include "core/camera.h"
 #include "image/image.h"
 #include "net/config.h"
+#include "net/emitter_head.h"
 #include "net/torch_pch.h"
 #include "net/unet2d.h"
 #include "net/unet3d.h"
@@ -27,14 +28,16 @@ struct PipelineOutput {
     torch::Tensor mpi;                    // [1, 4, D, H, W]: linear RGB, alpha
     std::vector<torch::Tensor> mpiCubes;  // resampled MPI per level, [1, 4, R, R, R]
     std::vector<torch::Tensor> cubes;     // completed levels (empty if not run)
+    Emitters emitters;                    // undefined tensors without an emitter head
 };
 
 struct LighthouseNetImpl : torch::nn::Module {
     explicit LighthouseNetImpl(const NetConfig& config);
     NetConfig config;
-    UNet3d mpiNet{nullptr};          // config.mpiNetwork == "3d"
-    UNet2d mpiNet2d{nullptr};        // config.mpiNetwork == "2d"
-    std::vector<UNet3d> completion;  // coarsest first
+    UNet3d mpiNet{nullptr};            // config.mpiNetwork == "3d"
+    UNet2d mpiNet2d{nullptr};          // config.mpiNetwork == "2d"
+    std::vector<UNet3d> completion;    // coarsest first
+    EmitterHead emitterHead{nullptr};  // config.emitters > 0
 
     // The MPI from the plane-sweep volume [1, 6, D, H, W] and the linear reference image:
     // per plane, alpha and a weight that blends the reference image (brightened where it
@@ -54,6 +57,8 @@ struct LighthouseNetImpl : torch::nn::Module {
     // ln of the photo's mean linear colour per channel, [1, 3, 1, 1, 1] (floored at 1e-3), added
     // to every invented colour's logit when config.colourAnchor; undefined otherwise.
     torch::Tensor logColourAnchor(const torch::Tensor& refLinear) const;
+    // The MPI, its cubes and, with runCompletion, the completed cubes (with the emitters added
+    // when the configuration has them).
     PipelineOutput run(const PairInputs& inputs, bool runCompletion = true);
 };
 TORCH_MODULE(LighthouseNet);

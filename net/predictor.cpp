@@ -139,6 +139,17 @@ Prediction Predictor::predict(const StereoPair& pair) const {
         inputs.layout, impl_->pruneAlpha);
     if (impl_->shell)
         result.volume = collapseToShell(result.volume, defaultShellCentre(inputs.layout));
+    if (out.emitters.position.defined()) {
+        const auto position = out.emitters.position.to(torch::kCPU, torch::kFloat64);
+        const auto radiance = out.emitters.radiance.to(torch::kCPU, torch::kFloat64);
+        for (int64_t k = 0; k < position.size(0); ++k)
+            result.emitters.push_back(
+                {Vec3d(position[k][0].item<double>(), position[k][1].item<double>(),
+                       position[k][2].item<double>()),
+                 out.emitters.radius[k].item<double>(), out.emitters.alpha[k].item<double>(),
+                 Vec3d(radiance[k][0].item<double>(), radiance[k][1].item<double>(),
+                       radiance[k][2].item<double>())});
+    }
     result.mpiOnly = cubesToVolume(out.mpiCubes, inputs.layout);
     result.mpi = tensorToMpi(out.mpi, inputs.ref, inputs.depths);
     result.volume.refCamera = cams.ref;

@@ -36,13 +36,22 @@ constexpr double kImplausibleBaseline = 1.0;
 // photo given as both views.
 std::vector<std::string> stereoPairWarnings(const StereoPair& pair);
 
+// A lamp the emitter head placed ("+emitters" models), as it was added to the volume.
+struct PredictedEmitter {
+    Vec3d position;     // metres, the volume's frame
+    double radius = 0;  // metres
+    double alpha = 0;   // voxel opacity at its centre
+    Vec3d radiance;     // linear RGB
+};
+
 struct Prediction {
     LightingVolume volume;   // completed levels, the lighting volume
     LightingVolume mpiOnly;  // the MPI resampled onto the levels, no completion (an ablation)
     Mpi mpi;                 // in the reference camera, at the network's input size
     DepthRange range;        // used depth range; votes/fallback set when it was estimated
     bool rangeEstimated = false;
-    double seconds = 0;  // network time, wall clock
+    std::vector<PredictedEmitter> emitters;  // empty unless the model has an emitter head
+    double seconds = 0;                      // network time, wall clock
 };
 
 // Default pruning threshold of predicted volumes (voxel alpha): below it a voxel holds

@@ -126,13 +126,47 @@ struct TrainingState {
     LighthouseNet average{nullptr};  // the moving average of net's weights: the model written
     PatchDiscriminator discriminator{nullptr};
     std::unique_ptr<torch::optim::Adam> optimizer, discriminatorOptimizer;
+    // The optimiser's parameter groups run at these multiples of the learning rate.
+    std::vector<double> learningRateScales{1.0};
     int iteration = 0;
     std::vector<LogRow> log;
 };
 
-void setLearningRate(torch::optim::Adam& optimizer, double lr) {
-    for (auto& group : optimizer.param_groups())
-        static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
+// An emitter head (net/emitter_head.h) starts from nothing inside a model being fine-tuned at a
+// small learning rate, where Adam would move its opacity logit (-4 at the start) by about that
+// rate per step: it would stay dark for the whole run. It trains this many times faster.
+constexpr double kEmitterHeadLearningRateScale = 100.0;
+
+// Adam over the network's parameters: one group, or two with an emitter head (its own rate).
+void makeNetOptimizer(TrainingState& s, double lr) {
+    if (!s.net->emitterHead) {
+        s.optimizer = std::make_unique<torch::optim::Adam>(s.net->parameters(),
+                                                           torch::optim::AdamOptions(lr));
+        s.learningRateScales = {1.0};
+        return;
+    }
+    std::vector<torch::Tensor> body;
+    const auto head = s.net->emitterHead->parameters();
+    for (const auto& p : s.net->parameters()) {
+        const bool inHead = std::any_of(head.begin(), head.end(), [&](const torch::Tensor& h) {
+            return h.unsafeGetTensorImpl() == p.unsafeGetTensorImpl();
+        });
+        if (!inHead) body.push_back(p);
+    }
+    std::vector<torch::optim::OptimizerParamGroup> groups;
+    groups.emplace_back(body, std::make_unique<torch::optim::AdamOptions>(lr));
+    groups.emplace_back(
+        head, std::make_unique<torch::optim::AdamOptions>(lr * kEmitterHeadLearningRateScale));
+    s.optimizer = std::make_unique<torch::optim::Adam>(groups, torch::optim::AdamOptions(lr));
+    s.learningRateScales = {1.0, kEmitterHeadLearningRateScale};
+}
+
+void setLearningRate(torch::optim::Adam& optimizer, double lr,
+                     const std::vector<double>& scales = {1.0}) {
+    auto& groups = optimizer.param_groups();
+    for (size_t i = 0; i < groups.size(); ++i)
+        static_cast<torch::optim::AdamOptions&>(groups[i].options())
+            .lr(lr * scales[std::min(i, scales.size() - 1)]);
 }
 
 void saveCheckpoint(const TrainOptions& o, TrainingState& s) {
@@ -476,8 +510,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     copyWeights(s.average, s.net);
     s.discriminator = PatchDiscriminator();
     s.discriminator->to(device);
-    s.optimizer = std::make_unique<torch::optim::Adam>(s.net->parameters(),
-                                                       torch::optim::AdamOptions(o.learningRate));
+    makeNetOptimizer(s, o.learningRate);
     s.discriminatorOptimizer = std::make_unique<torch::optim::Adam>(
         s.discriminator->parameters(), torch::optim::AdamOptions(o.learningRate).betas({0.0, 0.9}));
     if (loadCheckpoint(o, s)) {
@@ -618,7 +651,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         const int stage = stageAt(it, o.iterations, direct, adversarialWeight > 0);
         const double lr =
             it >= int(kLowLearningRateStart * o.iterations) ? o.learningRate / 10 : o.learningRate;
-        setLearningRate(*s.optimizer, lr);
+        setLearningRate(*s.optimizer, lr, s.learningRateScales);
         setLearningRate(*s.discriminatorOptimizer, lr);
 
         // Everything random in this iteration comes from (seed, iteration, example of the batch).

@@ -243,6 +243,32 @@ double brightestVoxel(const Prediction& p) {
     return brightest;
 }
 
+TEST_F(PredictionTest, AModelWithAnEmitterHeadReportsTheLampsItPlaced) {
+    NetConfig config = test::tinyHdrConfig();
+    config.emitters = 3;
+    const std::string path = savedModel(config, "lighthouse_prediction_emitters.pt");
+    StereoPair pair = planePair(0.2);
+    pair.cameras.near = 1.0;
+    pair.cameras.far = 4.0;
+    const Prediction lamps = Predictor(PredictorOptions{path, "cpu", 2, ""}).predict(pair);
+    std::filesystem::remove(path);
+    expectFinitePrediction(lamps);
+    EXPECT_TRUE(predictor.predict(pair).emitters.empty());  // a model without the head
+    ASSERT_EQ(lamps.emitters.size(), 3u);
+    const double half = lamps.volume.layout->side(0) / 2;
+    for (const PredictedEmitter& e : lamps.emitters) {
+        // A fresh head: every lamp as dim (opacity sigmoid(-4)), inside level 0, a radius in
+        // the head's range and a positive colour.
+        EXPECT_NEAR(e.alpha, 1.0 / (1.0 + std::exp(4.0)), 1e-6);
+        EXPECT_LT(std::abs(e.position.x()), half);
+        EXPECT_LT(std::abs(e.position.y()), half);
+        EXPECT_LT(std::abs(e.position.z()), half);
+        EXPECT_GE(e.radius, kMinEmitterRadius);
+        EXPECT_LE(e.radius, kMaxEmitterRadius);
+        EXPECT_GT(e.radiance.x(), 0.0);
+    }
+}
+
 TEST_F(PredictionTest, HighlightGainBrightensOnlyVoxelsAboveWhite) {
     const std::string path = savedModel(test::tinyHdrConfig(), "lighthouse_prediction_hdr.pt");
     const StereoPair pair = brightPlanePair();

@@ -148,6 +148,34 @@ TEST_F(TrainerTest, TheModelWrittenIsTheAverageOfTheWeights) {
     removeOutputs(slow);
 }
 
+TEST_F(TrainerTest, TheEmitterHeadTrainsAtAHundredTimesTheLearningRate) {
+    // Adam's first step moves every weight with a gradient by the learning rate exactly
+    // (its sign times lr): the head's by 100 lr, the rest by lr.
+    std::ostringstream log;
+    TrainOptions o = options("lighthouse_trainer_emitters");
+    NetConfig config = test::tinyHdrConfig();
+    config.emitters = 3;
+    o.configOverride = config;
+    o.iterations = 1;
+    o.averageDecay = 0.0;
+    o.halfModel = false;
+    train(o, log);
+    torch::manual_seed(3);
+    LighthouseNet fresh(config);
+    const LighthouseNet trained = loadModel(o.out, torch::Device(torch::kCPU));
+    removeOutputs(o);
+    double head = 0, body = 0;
+    const auto before = fresh->named_parameters();
+    for (const auto& p : trained->named_parameters()) {
+        const double moved = (p.value() - before[p.key()]).abs().max().item<double>();
+        double& largest = p.key().rfind("emitter_head.", 0) == 0 ? head : body;
+        largest = std::max(largest, moved);
+    }
+    const double lr = o.learningRate / 10;  // a one-iteration run is all in its last fifth
+    EXPECT_NEAR(body, lr, 0.05 * lr);
+    EXPECT_NEAR(head, 100 * lr, 5 * lr);
+}
+
 TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
     // The same seed and data with the irradiance loss off and strong: the envmap stage's
     // gradients differ, so do the weights; a negative weight is refused.

@@ -1,0 +1,107 @@
+#include "net/emitter_head.h"
+
+#include "net/hdr.h"
+#include "net/mpi_resample.h"
+
+namespace lh::net {
+
+namespace F = torch::nn::functional;
+
+namespace {
+
+// The head reads level 0 at 32^3: radiance feature (3), alpha (1), voxel position (3).
+constexpr int kInputChannels = 7;
+constexpr int64_t kReadResolution = 32;
+constexpr int64_t kCells = 8;          // per side: two stride-2 stages below kReadResolution
+constexpr double kPositionUnit = 4.0;  // metres, as the completion networks see positions
+// A new head starts dim (opacity sigmoid(-4) = 0.018), so that a model fine-tuned with one
+// begins by predicting what it predicted without, and lamp-bright: e^3 = 20 times the photo's
+// mean luminance.
+constexpr double kStartOpacityLogit = -4.0;
+constexpr double kStartLogBrightness = 3.0;
+
+// Voxel centres of `level` as [R, R, R, 3] (z, y, x order of the cubes), on `like`'s device.
+torch::Tensor centresLike(const VolumeLayout& layout, int level, const torch::Tensor& like) {
+    return voxelCentres(layout, level).to(like.device(), torch::kFloat32);
+}
+
+}  // namespace
+
+EmitterHeadImpl::EmitterHeadImpl(int k) : count(k) {
+    down1 = register_module("down1", PreActConv(kInputChannels, 16, 2));
+    down2 = register_module("down2", PreActConv(16, 32, 2));
+    mix = register_module("mix", PreActConv(32, 32, 1));
+    where = register_module("where", torch::nn::Conv3d(torch::nn::Conv3dOptions(32, k, 1)));
+    what = register_module("what", torch::nn::Linear(32, 6 * k));
+    torch::NoGradGuard noGrad;
+    // Small outputs at the start: positions near the middle of level 0, every emitter exactly
+    // as dim. The small random weights elsewhere keep the emitters apart: identical ones would
+    // get identical gradients and never separate.
+    where->weight.mul_(0.1);
+    where->bias.zero_();
+    what->weight.mul_(0.1);
+    what->weight.view({k, 6, -1}).select(1, 2).zero_();
+    what->bias.zero_();
+    what->bias.view({k, 6}).select(1, 2).fill_(kStartOpacityLogit);
+}
+
+Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayout& layout,
+                                  const torch::Tensor& photoLuminance) {
+    const auto cube = level0.detach();
+    const auto centres = centresLike(layout, 0, cube).permute({3, 0, 1, 2}).unsqueeze(0);
+    auto x = torch::cat({radianceFeature(cube.narrow(1, 0, 3).clamp_min(0)), cube.narrow(1, 3, 1),
+                         centres / kPositionUnit},
+                        1);
+    x = F::adaptive_avg_pool3d(x, F::AdaptiveAvgPool3dFuncOptions(kReadResolution));
+    const auto features = mix(down2(down1(x)));  // [1, 32, 8, 8, 8]
+
+    Emitters e;
+    const auto cellCentres =
+        F::adaptive_avg_pool3d(centres, F::AdaptiveAvgPool3dFuncOptions(kCells))
+            .reshape({3, kCells * kCells * kCells})
+            .t();                                                                  // [cells, 3]
+    const auto weights = torch::softmax(where(features).reshape({count, -1}), 1);  // [K, cells]
+    e.position = torch::matmul(weights, cellCentres);
+
+    const auto out = what(features.mean({2, 3, 4})).reshape({count, 6});
+    e.radius = kMinEmitterRadius +
+               (kMaxEmitterRadius - kMinEmitterRadius) * torch::sigmoid(out.select(1, 0));
+    e.alpha = torch::sigmoid(out.select(1, 2));
+    const auto hue = 3.0 * torch::softmax(out.narrow(1, 3, 3), 1);  // mean 1 over the channels
+    e.radiance = photoLuminance.reshape({1, 1}) *
+                 hdrActivation(out.select(1, 1) + kStartLogBrightness).unsqueeze(1) * hue;
+    return e;
+}
+
+std::vector<torch::Tensor> addEmitters(const std::vector<torch::Tensor>& cubes,
+                                       const Emitters& emitters, const VolumeLayout& layout) {
+    std::vector<torch::Tensor> out;
+    const int64_t k = emitters.position.size(0);
+    for (size_t level = 0; level < cubes.size(); ++level) {
+        const auto& cube = cubes[level];
+        const int64_t r = cube.size(2);
+        const double voxel = layout.voxelSize(int(level));
+        const auto centres = centresLike(layout, int(level), cube).reshape({-1, 1, 3});
+        const auto width = emitters.radius.clamp_min(kMinEmitterWidthVoxels * voxel);  // [K]
+        const auto distance2 = (centres - emitters.position.reshape({1, k, 3})).pow(2).sum(-1);
+        const auto blobAlpha = emitters.alpha.reshape({1, k}) *
+                               torch::exp(-distance2 / (2.0 * width.pow(2)).reshape({1, k}));
+        // Optical depth over one voxel, per voxel and emitter: [R^3, K].
+        const auto blobDepth = -torch::log1p(-blobAlpha.clamp(0.0, kMaxVoxelAlpha));
+        const auto blobRadiance =
+            emitters.radiance * (emitters.radius / width).pow(2).unsqueeze(1);  // [K, 3]
+        const auto emitterDepth = blobDepth.sum(1).reshape({1, 1, r, r, r});
+        const auto emitterLight =
+            torch::matmul(blobDepth, blobRadiance).t().reshape({1, 3, r, r, r});
+
+        const auto rgb = cube.narrow(1, 0, 3), alpha = cube.narrow(1, 3, 1);
+        const auto cubeDepth = -torch::log1p(-alpha.clamp(0.0, kMaxVoxelAlpha));
+        const auto depth = cubeDepth + emitterDepth;
+        const auto mixed = (cubeDepth * rgb + emitterLight) / depth.clamp_min(1e-12);
+        out.push_back(
+            torch::cat({torch::where(depth > 1e-12, mixed, rgb), 1.0 - torch::exp(-depth)}, 1));
+    }
+    return out;
+}
+
+}  // namespace lh::net

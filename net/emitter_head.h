@@ -1,0 +1,58 @@
+// The emitter head: a few compact lamps placed by the network, beside what the completion
+// networks paint (a "+emitters" configuration, net/config.h).
+//
+// Most of the light a predicted envmap misses comes from lamps and windows that the photo does
+// not show (docs/network.md, "Where the error is"). A completion network answers a lamp it
+// cannot place with a dim glow spread over the walls, which the per-pixel losses then charge
+// for. The head instead places K small bright blobs in the room. Each has a position (a soft
+// argmax over the 8^3 cells of level 0), a radius, a peak opacity and an HDR colour, and is
+// added to every level as a Gaussian blob of density. Its light is compact by construction, so
+// making it brighter costs few pixels, and the irradiance loss can move it smoothly towards
+// the side the light comes from.
+#pragma once
+
+#include "net/torch_pch.h"
+#include "net/unet3d.h"
+#include "vdb/volume_layout.h"
+
+#include <vector>
+
+namespace lh::net {
+
+// Emitter radii the head may choose, metres: from a small bulb to a window-sized panel.
+constexpr double kMinEmitterRadius = 0.05;
+constexpr double kMaxEmitterRadius = 0.5;
+// A blob is never drawn narrower than this many voxels of the level it lies in (standard
+// deviation of its Gaussian), so that it does not vanish between voxel centres; its radiance
+// falls with the square of the widening, so it sends the same light at every level.
+constexpr double kMinEmitterWidthVoxels = 0.7;
+
+struct Emitters {
+    torch::Tensor position;  // [K, 3] metres, the volume's frame (the reference camera's)
+    torch::Tensor radius;    // [K] metres: the Gaussian's standard deviation
+    torch::Tensor alpha;     // [K] voxel opacity at the centre, in (0, 1)
+    torch::Tensor radiance;  // [K, 3] linear RGB
+};
+
+struct EmitterHeadImpl : torch::nn::Module {
+    explicit EmitterHeadImpl(int count);
+    // level0: the completed level-0 cube [1, 4, R, R, R] (R a multiple of 16; read, not
+    // trained through); photoLuminance: the photo's mean linear luminance, a scalar tensor
+    // (the emitters' radiance is relative to it, so a brighter exposure brightens them too).
+    Emitters forward(const torch::Tensor& level0, const VolumeLayout& layout,
+                     const torch::Tensor& photoLuminance);
+
+    int count;
+    PreActConv down1{nullptr}, down2{nullptr}, mix{nullptr};
+    torch::nn::Conv3d where{nullptr};  // one position logit per emitter and 8^3 cell
+    torch::nn::Linear what{nullptr};   // per emitter: radius, brightness, opacity, colour (3)
+};
+TORCH_MODULE(EmitterHead);
+
+// The cubes [1, 4, R, R, R] (linear RGB, voxel alpha) of `layout` with the emitters added: in
+// every voxel the optical depths add and the colours mix in proportion to them, as two
+// emission-absorption media sharing the voxel do.
+std::vector<torch::Tensor> addEmitters(const std::vector<torch::Tensor>& cubes,
+                                       const Emitters& emitters, const VolumeLayout& layout);
+
+}  // namespace lh::net

@@ -1,0 +1,170 @@
+// The emitter head: its blobs' known values in the cubes (opacity, colour, mixing with what a
+// voxel already holds, widening on coarse levels), a gradient that moves a lamp to where the
+// loss wants light, the "+emitters" configurations, and a model fine-tuned from one without it.
+#include "net/emitter_head.h"
+#include "net/lighthouse_net.h"
+#include "tests/net/net_test_scenes.h"
+
+#include "core/errors.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace lh::net {
+namespace {
+
+// Level 0 spans [-4, 4]^3 m in 16^3 voxels of 0.5 m: voxel (z, y, x) is centred at
+// -3.75 + 0.5 (x, y, z).
+const VolumeLayout kLayout{8.0, 2, 16};
+
+torch::Tensor voxelCentreOfLevel0(int64_t z, int64_t y, int64_t x) {
+    return torch::tensor({-3.75 + 0.5 * x, -3.75 + 0.5 * y, -3.75 + 0.5 * z}, torch::kFloat32);
+}
+
+Emitters oneEmitter(const torch::Tensor& position, double radius, double alpha,
+                    std::vector<float> rgb) {
+    Emitters e;
+    e.position = position.reshape({1, 3});
+    e.radius = torch::tensor({float(radius)});
+    e.alpha = torch::tensor({float(alpha)});
+    e.radiance = torch::tensor(rgb).reshape({1, 3});
+    return e;
+}
+
+std::vector<torch::Tensor> emptyCubes() {
+    return {torch::zeros({1, 4, 16, 16, 16}), torch::zeros({1, 4, 16, 16, 16})};
+}
+
+TEST(AddEmitters, ABlobHoldsItsColourAndAGaussianOpacity) {
+    // Radius 1 m (2 voxels): the voxel two steps along x lies one standard deviation away.
+    const auto e = oneEmitter(voxelCentreOfLevel0(9, 8, 10), 1.0, 0.5, {4.0f, 2.0f, 1.0f});
+    const auto cubes = addEmitters(emptyCubes(), e, kLayout);
+    const auto voxel = [&](int64_t z, int64_t y, int64_t x) {
+        return cubes[0][0].select(1, z).select(1, y).select(1, x);  // [4]
+    };
+    EXPECT_NEAR(voxel(9, 8, 10)[3].item<double>(), 0.5, 1e-5);
+    EXPECT_NEAR(voxel(9, 8, 12)[3].item<double>(), 0.5 * std::exp(-0.5), 1e-5);
+    EXPECT_NEAR(voxel(9, 8, 10 - 2)[3].item<double>(), 0.5 * std::exp(-0.5), 1e-5);
+    // Empty voxels take the emitter's colour wherever it reaches.
+    for (int64_t x : {10, 12, 14}) {
+        EXPECT_NEAR(voxel(9, 8, x)[0].item<double>(), 4.0, 1e-4) << "x " << x;
+        EXPECT_NEAR(voxel(9, 8, x)[2].item<double>(), 1.0, 1e-4) << "x " << x;
+    }
+    // 5 m away, five standard deviations: exp(-12.5) of it.
+    EXPECT_NEAR(voxel(9, 8, 0)[3].item<double>(), 0.5 * std::exp(-12.5),
+                0.02 * 0.5 * std::exp(-12.5));
+}
+
+TEST(AddEmitters, ColoursMixByOpticalDepthWithWhatTheVoxelHolds) {
+    auto cubes = emptyCubes();
+    // A blue voxel of opacity 0.5 where an orange emitter of opacity 0.5 is centred: equal
+    // optical depths ln 2, so the colours average and the opacity is 1 - 0.5 * 0.5.
+    cubes[0][0].select(1, 9).select(1, 8).select(1, 10).copy_(torch::tensor({0.f, 0.f, 1.f, 0.5f}));
+    const auto e = oneEmitter(voxelCentreOfLevel0(9, 8, 10), 0.5, 0.5, {4.0f, 2.0f, 1.0f});
+    const auto out = addEmitters(cubes, e, kLayout)[0][0].select(1, 9).select(1, 8).select(1, 10);
+    EXPECT_NEAR(out[0].item<double>(), 2.0, 1e-4);
+    EXPECT_NEAR(out[1].item<double>(), 1.0, 1e-4);
+    EXPECT_NEAR(out[2].item<double>(), 1.0, 1e-4);
+    EXPECT_NEAR(out[3].item<double>(), 0.75, 1e-5);
+}
+
+TEST(AddEmitters, AnEmitterOfZeroOpacityLeavesTheCubesAsTheyAre) {
+    torch::manual_seed(3);
+    std::vector<torch::Tensor> cubes;
+    for (int k = 0; k < 2; ++k)
+        cubes.push_back(torch::cat(
+            {4.0 * torch::rand({1, 3, 16, 16, 16}), 0.99 * torch::rand({1, 1, 16, 16, 16})}, 1));
+    const auto e = oneEmitter(voxelCentreOfLevel0(9, 8, 10), 1.0, 0.0, {4.0f, 2.0f, 1.0f});
+    const auto out = addEmitters(cubes, e, kLayout);
+    for (int k = 0; k < 2; ++k)
+        EXPECT_TRUE(torch::allclose(out[k], cubes[k], 1e-4, 1e-5)) << "level " << k;
+}
+
+TEST(AddEmitters, ABulbSmallerThanAVoxelIsWidenedWithItsLightKept) {
+    // A 5 cm bulb on level 0 (0.5 m voxels) is drawn 0.35 m wide, (0.05 / 0.35)^2 as bright.
+    const auto e = oneEmitter(voxelCentreOfLevel0(9, 8, 10), 0.05, 0.5, {49.0f, 49.0f, 49.0f});
+    const auto centre =
+        addEmitters(emptyCubes(), e, kLayout)[0][0].select(1, 9).select(1, 8).select(1, 10);
+    const double widening = std::pow(0.05 / (kMinEmitterWidthVoxels * 0.5), 2);
+    EXPECT_NEAR(centre[0].item<double>(), 49.0 * widening, 1e-3);
+    EXPECT_NEAR(centre[3].item<double>(), 0.5, 1e-5);
+}
+
+TEST(AddEmitters, TheGradientMovesALampToWhereTheLossWantsLight) {
+    // Ask for opacity in one voxel; start the lamp 0.6 m beside it: gradient steps on its
+    // position alone bring it there.
+    const auto target = voxelCentreOfLevel0(9, 8, 10);
+    auto position = (target + torch::tensor({0.6f, -0.3f, 0.2f})).requires_grad_(true);
+    torch::optim::SGD sgd({position}, torch::optim::SGDOptions(0.5));
+    for (int step = 0; step < 200; ++step) {
+        Emitters e = oneEmitter(position, 0.5, 0.9, {1.0f, 1.0f, 1.0f});
+        const auto cubes = addEmitters(emptyCubes(), e, kLayout);
+        const auto loss = -cubes[0][0][3][9][8][10];
+        sgd.zero_grad();
+        loss.backward();
+        sgd.step();
+    }
+    EXPECT_LT((position.detach() - target).norm().item<double>(), 0.05);
+}
+
+TEST(EmitterHead, ConfigurationsAreNamedBySuffix) {
+    const NetConfig wide = NetConfig::byName("wide");
+    const NetConfig lamps = NetConfig::byName("wide+emitters");
+    EXPECT_EQ(wide.emitters, 0);
+    EXPECT_EQ(lamps.emitters, kSuffixEmitters);
+    EXPECT_FALSE(lamps.heightProfile);
+    EXPECT_EQ(lamps.name, "wide+emitters");
+    EXPECT_FALSE(lamps.sameParameters(wide));  // the head's parameters
+    for (const char* both : {"wide+profile+emitters", "wide+emitters+profile"}) {
+        const NetConfig c = NetConfig::byName(both);
+        EXPECT_TRUE(c.heightProfile) << both;
+        EXPECT_EQ(c.emitters, kSuffixEmitters) << both;
+    }
+    EXPECT_EQ(NetConfig::fromJson(lamps.toJson(), "test").emitters, kSuffixEmitters);
+    // Models written before the head existed have no key, and load without one.
+    auto old = nlohmann::json::parse(wide.toJson());
+    old.erase("emitters");
+    EXPECT_EQ(NetConfig::fromJson(old.dump(), "test").emitters, 0);
+    EXPECT_THROW(NetConfig::byName("wide+emitters+emitters"), InputError);
+    EXPECT_THROW(NetConfig::byName("+emitters"), InputError);
+    NetConfig ldr = NetConfig::byName("small");
+    ldr.emitters = 2;
+    EXPECT_THROW(ldr.validate(), InputError);  // emitters need HDR colours
+}
+
+TEST(EmitterHead, AFineTunedModelStartsDimAndItsLampsLearnFromTheCubes) {
+    NetConfig plainConfig = test::tinyHdrConfig(), lampConfig = plainConfig;
+    lampConfig.emitters = 3;
+    torch::manual_seed(12);
+    LighthouseNet plain(plainConfig), lamps(lampConfig);
+    plain->eval();
+    lamps->eval();
+    const MatchedWeights m = copyMatchingWeights(lamps, plain);
+    EXPECT_LT(m.copied, m.tensors);  // the head starts fresh
+    const PinholeCamera ref = test::planeCamera(64, 32),
+                        src = test::planeCamera(64, 32, Vec3d(0.2, 0.0, 0.0));
+    const PairInputs in =
+        makePairInputs(test::renderPlane(ref, 2.0), test::renderPlane(src, 2.0), ref, src, 1.0, 4.0,
+                       plainConfig, torch::Device(torch::kCPU));
+    const PipelineOutput a = plain->run(in), b = lamps->run(in);
+    ASSERT_TRUE(b.emitters.alpha.defined());
+    EXPECT_FALSE(a.emitters.alpha.defined());
+    ASSERT_EQ(b.emitters.position.sizes(), torch::IntArrayRef({3, 3}));
+    // Dim at the start: opacity sigmoid(-4) everywhere, inside level 0.
+    EXPECT_TRUE(torch::allclose(b.emitters.alpha, torch::full({3}, 1.0 / (1.0 + std::exp(4.0))),
+                                1e-3, 1e-4));
+    const double half = in.layout.side(0) / 2;
+    EXPECT_LT(b.emitters.position.abs().max().item<double>(), half);
+    for (size_t k = 0; k < a.cubes.size(); ++k)
+        EXPECT_TRUE(torch::isfinite(b.cubes[k]).all().item<bool>()) << "level " << k;
+    // A loss on the cubes reaches the head's parameters (position logits and lamp outputs).
+    const auto loss = b.cubes[0].narrow(1, 0, 3).mean() + b.cubes[1].narrow(1, 3, 1).mean();
+    loss.backward();
+    EXPECT_GT(lamps->emitterHead->where->weight.grad().abs().sum().item<double>(), 0.0);
+    EXPECT_GT(lamps->emitterHead->what->weight.grad().abs().sum().item<double>(), 0.0);
+}
+
+}  // namespace
+}  // namespace lh::net
