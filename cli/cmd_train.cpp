@@ -136,6 +136,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "alpha)); with --prune-alpha it asks for empty rooms and opaque walls, which "
                     "render fastest; 0: off")
         ->capture_default_str();
+    cmd->add_option("--emitter-position-weight", o->emitterPositionWeight,
+                    "With an emitter head (--config wide+emitters): weight of the squared "
+                    "distance (m^2) from each of its lamps to the nearest lamp or window of the "
+                    "example's scene.json; 0: off")
+        ->capture_default_str();
     cmd->add_option("--closure-weight", o->closureWeight,
                     "Weight of the closed-room prior (the mean transmittance an envmap ray has "
                     "left behind the volume): asks for walls that stop every ray, as the "

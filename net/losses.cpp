@@ -235,6 +235,11 @@ torch::Tensor sparsityLoss(const std::vector<torch::Tensor>& cubes) {
     return total / double(cubes.size());
 }
 
+torch::Tensor emitterPositionLoss(const torch::Tensor& lamps, const torch::Tensor& trueLamps) {
+    const auto distance2 = (lamps.unsqueeze(1) - trueLamps.unsqueeze(0)).pow(2).sum(-1);  // [K, M]
+    return std::get<0>(distance2.min(1)).mean();
+}
+
 torch::Tensor binaryAlphaLoss(const std::vector<torch::Tensor>& cubes) {
     auto total = torch::zeros({}, cubes.front().options());
     for (const auto& c : cubes) {

@@ -102,6 +102,11 @@ torch::Tensor sparsityLoss(const std::vector<torch::Tensor>& cubes);
 // termination cannot use; this asks each voxel to decide.
 torch::Tensor binaryAlphaLoss(const std::vector<torch::Tensor>& cubes);
 
+// Direct supervision of the emitter head's lamps (net/emitter_head.h): the mean over its lamps
+// [K, 3] of the squared distance (m^2) to the nearest of the scene's true lamps and windows
+// [M, 3] (their centres). 0 when every lamp sits on a true one.
+torch::Tensor emitterPositionLoss(const torch::Tensor& lamps, const torch::Tensor& trueLamps);
+
 // A prior for closed rooms: the mean over an envmap's rays of the transmittance left behind
 // the volume ([1, 1, H, W], TorchEnvmap::transmittance); 0 where every ray ends on something
 // opaque, 1 for an empty volume. The training rooms are closed, so every ray from inside

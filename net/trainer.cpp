@@ -24,6 +24,7 @@
 #include "net/volume_render.h"
 #include "net/weight_average.h"
 #include "net/widen.h"
+#include "synth/scene_json.h"
 
 #include <algorithm>
 #include <chrono>
@@ -72,6 +73,8 @@ void TrainOptions::validate() const {
     validateHighlightGain(highlightGain);
     if (!(alphaBinaryWeight >= 0 && alphaBinaryWeight <= 1000))
         throw InputError("--alpha-binary-weight must be in [0, 1000]");
+    if (!(emitterPositionWeight >= 0 && emitterPositionWeight <= 1000))
+        throw InputError("--emitter-position-weight must be in [0, 1000]");
     if (!(closureWeight >= 0 && closureWeight <= 100))
         throw InputError("--closure-weight must be in [0, 100]");
     if (!(directAdversarialWeight >= 0 && directAdversarialWeight <= 10))
@@ -375,6 +378,7 @@ struct PreparedExample {
                                                 // without tgt.exr
     torch::Tensor refDepth;                     // [1, 1, H, W] metres; undefined without depth.exr
     std::vector<torch::Tensor> oracle;          // cubes; empty without oracle.vdb
+    torch::Tensor lampCentres;                  // [M, 3] metres; undefined unless asked for
     std::vector<torch::Tensor> envmaps;         // [1, 3, h, w] linear HDR at the training size
     std::vector<torch::Tensor> envmapObserved;  // [1, 1, h, w] 0/1; only for the highlight loss
     std::vector<Vec3d> envmapPositions;
@@ -438,6 +442,15 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
                                                config.width, config.height))
                          .narrow(1, 0, 1)
                          .to(device);
+    if (o.emitterPositionWeight > 0 && fs::is_regular_file(dir / dataset::kScene)) {
+        std::vector<float> centres;  // every emitting primitive: lamps and window panes
+        for (const synth::Primitive& prim :
+             synth::loadScene((dir / dataset::kScene).string()).primitives)
+            if (prim.isEmitter())
+                for (double v : {prim.centre.x(), prim.centre.y(), prim.centre.z()})
+                    centres.push_back(float(v));
+        if (!centres.empty()) p.lampCentres = torch::tensor(centres).reshape({-1, 3}).to(device);
+    }
     if (fs::is_regular_file(dir / dataset::kOracle)) {
         p.oracle = loadOracleCubes((dir / dataset::kOracle).string(), p.inputs.layout, device);
         const auto gains =
@@ -620,6 +633,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                  << " pruned (straight-through)";
     if (o.alphaBinaryWeight > 0)
         progress << "; cubes also " << o.alphaBinaryWeight << " x alpha (1 - alpha)";
+    if (o.emitterPositionWeight > 0)
+        progress << "; emitter head also " << o.emitterPositionWeight
+                 << " x squared distance to the nearest true lamp or window (scene.json)";
     if (o.directAdversarialWeight > 0)
         progress << "; envmaps also " << o.directAdversarialWeight
                  << " x the PatchGAN generator loss, from the first step";
@@ -724,6 +740,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                 if (!direct) loss = loss + kSparsityWeight * sparsityLoss(out.cubes);
                 if (o.alphaBinaryWeight > 0)
                     loss = loss + o.alphaBinaryWeight * binaryAlphaLoss(out.cubes);
+                if (o.emitterPositionWeight > 0 && out.emitters.position.defined() &&
+                    ex.lampCentres.defined())
+                    loss = loss + o.emitterPositionWeight *
+                                      emitterPositionLoss(out.emitters.position, ex.lampCentres);
                 if (stage >= 3) {
                     // Discriminator step on real vs (detached) predicted envmaps, then the
                     // generator term. Data-parallel: one step per example of the rank's slice, on

@@ -116,6 +116,11 @@ struct TrainOptions {
     // cubes; with pruneAlpha, what asks for the empty rooms and opaque walls the renderer
     // skips and stops at. 0: off.
     double alphaBinaryWeight = 0.0;
+    // Weight of the lamp-position loss (net/losses.h emitterPositionLoss) on the emitter head's
+    // lamps (+emitters models): the squared distance from each to the nearest lamp or window of
+    // the example's scene.json. Direct supervision of where lamps are, which the render losses
+    // alone did not teach. 0: off.
+    double emitterPositionWeight = 0.0;
     // Weight of the closed-room prior (net/losses.h closureLoss): the transmittance each
     // envmap ray has left behind the (pruned) volume. The training rooms are closed; fog lets
     // rays leave through the walls, dark and slow to render. 0: off.

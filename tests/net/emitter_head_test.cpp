@@ -3,6 +3,7 @@
 // loss wants light, the "+emitters" configurations, and a model fine-tuned from one without it.
 #include "net/emitter_head.h"
 #include "net/lighthouse_net.h"
+#include "net/losses.h"
 #include "tests/net/net_test_scenes.h"
 
 #include "core/errors.h"
@@ -107,6 +108,14 @@ TEST(AddEmitters, TheGradientMovesALampToWhereTheLossWantsLight) {
         sgd.step();
     }
     EXPECT_LT((position.detach() - target).norm().item<double>(), 0.05);
+}
+
+TEST(EmitterPositionLoss, TheMeanSquaredDistanceToTheNearestTrueLamp) {
+    // The first lamp is 1 m from its nearest true one, the second sits on one: (1 + 0) / 2.
+    const auto lamps = torch::tensor({0.f, 0.f, 0.f, 1.f, 0.f, 0.f}).reshape({2, 3});
+    const auto truth = torch::tensor({0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 5.f, 5.f, 5.f}).reshape({3, 3});
+    EXPECT_NEAR(emitterPositionLoss(lamps, truth).item<double>(), 0.5, 1e-6);
+    EXPECT_EQ(emitterPositionLoss(truth, truth).item<double>(), 0.0);
 }
 
 TEST(EmitterHead, ConfigurationsAreNamedBySuffix) {

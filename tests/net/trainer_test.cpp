@@ -190,6 +190,28 @@ TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, TheEmitterPositionWeightSteersTheHead) {
+    // The tiny set's rooms have lamps in scene.json: with the lamp-position loss on, the head's
+    // gradients differ, so do the weights, and the log names the term.
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_emitter_position", 0.0, 10.0,
+                  [](TrainOptions& o, double w) {
+                      NetConfig config = test::tinyHdrConfig();
+                      config.emitters = 3;
+                      o.configOverride = config;
+                      o.emitterPositionWeight = w;
+                  },
+                  log),
+              1e-6)
+        << "the lamp-position weight changed nothing";
+    EXPECT_NE(log.str().find("emitter head also 10 x squared distance"), std::string::npos)
+        << log.str();
+    TrainOptions negative = options("lighthouse_trainer_emitter_position_negative");
+    negative.emitterPositionWeight = -1.0;
+    EXPECT_THROW(negative.validate(), InputError);
+}
+
 TEST_F(TrainerTest, TheViewHdrWeightSteersTraining) {
     // The tiny set's examples carry tgt.exr: with the HDR view loss on, the MPI's gradients
     // differ, so do the weights, and the log names the term; a negative weight is refused.
