@@ -86,8 +86,9 @@ std::vector<torch::Tensor> addEmitters(const std::vector<torch::Tensor>& cubes,
         const auto distance2 = (centres - emitters.position.reshape({1, k, 3})).pow(2).sum(-1);
         const auto blobAlpha = emitters.alpha.reshape({1, k}) *
                                torch::exp(-distance2 / (2.0 * width.pow(2)).reshape({1, k}));
-        // Optical depth over one voxel, per voxel and emitter: [R^3, K].
-        const auto blobDepth = -torch::log1p(-blobAlpha.clamp(0.0, kMaxVoxelAlpha));
+        // Optical depth over one voxel (the density in voxel units), per voxel and emitter:
+        // [R^3, K].
+        const auto blobDepth = densityFromAlpha(blobAlpha, 1.0);
         const auto blobRadiance =
             emitters.radiance * (emitters.radius / width).pow(2).unsqueeze(1);  // [K, 3]
         const auto emitterDepth = blobDepth.sum(1).reshape({1, 1, r, r, r});
@@ -95,7 +96,7 @@ std::vector<torch::Tensor> addEmitters(const std::vector<torch::Tensor>& cubes,
             torch::matmul(blobDepth, blobRadiance).t().reshape({1, 3, r, r, r});
 
         const auto rgb = cube.narrow(1, 0, 3), alpha = cube.narrow(1, 3, 1);
-        const auto cubeDepth = -torch::log1p(-alpha.clamp(0.0, kMaxVoxelAlpha));
+        const auto cubeDepth = densityFromAlpha(alpha, 1.0);
         const auto depth = cubeDepth + emitterDepth;
         const auto mixed = (cubeDepth * rgb + emitterLight) / depth.clamp_min(1e-12);
         out.push_back(

@@ -180,11 +180,7 @@ PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) 
                                                      config.hdr ? kMaxMpiRadiance : 1.0));
     if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout, logAnchor);
     if (runCompletion && emitterHead) {
-        const auto& rgb = in.refLinear;
-        const auto photoLuminance =
-            (0.2126 * rgb.select(1, 0) + 0.7152 * rgb.select(1, 1) + 0.0722 * rgb.select(1, 2))
-                .mean()
-                .clamp_min(1e-3);
+        const auto photoLuminance = luminanceTensor(in.refLinear).mean().clamp_min(1e-3);
         result.emitters = emitterHead(result.cubes[0], in.layout, photoLuminance);
         result.cubes = addEmitters(result.cubes, result.emitters, in.layout);
     }

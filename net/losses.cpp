@@ -122,19 +122,10 @@ torch::Tensor coarseHdrImageLoss(const torch::Tensor& predicted, const torch::Te
                         torch::avg_pool2d(target.clamp_min(0.0), {block, block}));
 }
 
-namespace {
-
-torch::Tensor luminanceOf(const torch::Tensor& linear) {  // [N, 3, H, W] -> [N, 1, H, W]
-    return kLumaR * linear.narrow(1, 0, 1) + kLumaG * linear.narrow(1, 1, 1) +
-           kLumaB * linear.narrow(1, 2, 1);
-}
-
-}  // namespace
-
 torch::Tensor highlightLoss(const torch::Tensor& predicted, const torch::Tensor& target,
                             const torch::Tensor& observed) {
-    const auto yPred = luminanceOf(predicted).clamp_min(0.0);
-    const auto yTrue = luminanceOf(target).clamp_min(0.0);
+    const auto yPred = luminanceTensor(predicted).clamp_min(0.0);
+    const auto yTrue = luminanceTensor(target).clamp_min(0.0);
     const auto trueHighlight = yTrue > kLampLuminance;
     const auto show =
         torch::relu(torch::log1p(yTrue.clamp_max(2.0 * kLampLuminance)) - torch::log1p(yPred));
@@ -173,7 +164,7 @@ torch::Tensor focusedIrradianceLoss(const torch::Tensor& predicted, const torch:
     if (focus == 0.0) return irradianceLoss(predicted, target);
     const auto linear = predicted.clamp_min(0.0);
     const auto frozen = linear.detach();
-    const auto luminance = luminanceOf(frozen);  // [N, 1, H, W]
+    const auto luminance = luminanceTensor(frozen);  // [N, 1, H, W]
     // (Y / mean Y)^focus normalised to a mean of 1 is Y^focus over its mean.
     const auto weight = luminance.pow(focus);
     const auto share = weight / (weight.mean({2, 3}, true) + 1e-12);

@@ -1,6 +1,7 @@
 #include "net/tensor_image.h"
 
 #include "core/errors.h"
+#include "image/luminance.h"
 
 namespace lh::net {
 
@@ -19,6 +20,11 @@ ImageRGB tensorToImage(const torch::Tensor& t) {
     ImageRGB image(int(hwc.size(1)), int(hwc.size(0)));
     std::memcpy(image.pixels.data(), hwc.data_ptr<float>(), image.pixels.size() * sizeof(float));
     return image;
+}
+
+torch::Tensor luminanceTensor(const torch::Tensor& linear) {
+    return kLumaR * linear.narrow(1, 0, 1) + kLumaG * linear.narrow(1, 1, 1) +
+           kLumaB * linear.narrow(1, 2, 1);
 }
 
 torch::Tensor srgbEncodeTensor(const torch::Tensor& linear) {

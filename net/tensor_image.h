@@ -15,6 +15,10 @@ ImageRGB tensorToImage(const torch::Tensor& t);      // [1, 3, H, W] (any device
 // of the power law finite at 0). Network inputs and image losses live in this space.
 torch::Tensor srgbEncodeTensor(const torch::Tensor& linear);
 
+// Relative luminance Y (image/luminance.h's weights) of linear RGB in channels 0-2:
+// [N, 3, ...] -> [N, 1, ...].
+torch::Tensor luminanceTensor(const torch::Tensor& linear);
+
 // Camera -> world rotation [3, 3] and centre [3], float64 on the CPU.
 torch::Tensor rotationTensor(const PinholeCamera& camera);
 torch::Tensor positionTensor(const PinholeCamera& camera);

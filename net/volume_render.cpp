@@ -1,7 +1,7 @@
 #include "net/volume_render.h"
 
-#include "image/luminance.h"
 #include "net/mpi_resample.h"
+#include "net/tensor_image.h"
 
 #include <algorithm>
 #include <cmath>
@@ -142,8 +142,7 @@ std::vector<torch::Tensor> expandHighlightsInCubes(const std::vector<torch::Tens
     expanded.reserve(cubes.size());
     for (const auto& cube : cubes) {
         const auto rgb = cube.narrow(1, 0, 3);
-        const auto y = kLumaR * rgb.narrow(1, 0, 1) + kLumaG * rgb.narrow(1, 1, 1) +
-                       kLumaB * rgb.narrow(1, 2, 1);
+        const auto y = luminanceTensor(rgb);
         // Where Y <= knee the factor is exactly 1; the clamp keeps the unused branch finite.
         const auto above = y > knee;
         const auto safeY = y.clamp_min(knee);
