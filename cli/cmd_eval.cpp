@@ -43,7 +43,8 @@ void addEvalCommand(CLI::App& app, const int& threads) {
         "--headroom", o->headroom,
         "Also score ours with one part of the truth put in (the observed pixels, the "
         "unobserved ones, the lamps and windows, the observed and the unobserved lamps and "
-        "windows): what a perfect job on each part alone would gain; not with --shard");
+        "windows, and those unobserved ones turned 30 and 60 degrees to the side): what a "
+        "perfect job on each part alone would gain; not with --shard");
     auto shard = std::make_shared<std::string>();
     cmd->add_option(
         "--shard", *shard,

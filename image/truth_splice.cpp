@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "image/luminance.h"
 
+#include <cmath>
 #include <string>
 
 namespace lh {
@@ -19,8 +20,23 @@ const char* truthPartName(TruthPart part) {
             return "true observed lamps and windows";
         case TruthPart::UnobservedLampsAndWindows:
             return "true unobserved lamps and windows";
+        case TruthPart::UnobservedLampsAndWindowsTurned30:
+            return "true unobserved lamps and windows, turned 30 deg";
+        case TruthPart::UnobservedLampsAndWindowsTurned60:
+            return "true unobserved lamps and windows, turned 60 deg";
     }
     return "?";
+}
+
+double truthPartTurnDegrees(TruthPart part) {
+    switch (part) {
+        case TruthPart::UnobservedLampsAndWindowsTurned30:
+            return 30.0;
+        case TruthPart::UnobservedLampsAndWindowsTurned60:
+            return 60.0;
+        default:
+            return 0.0;
+    }
 }
 
 ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPart part,
@@ -33,6 +49,10 @@ ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPar
     if (observed.size() != pixels)
         throw InputError("observed mask has " + std::to_string(observed.size()) +
                          " pixels, the envmap " + std::to_string(pixels));
+    // A turn of 360 degrees is the envmap's width in columns.
+    const int width = truth.width;
+    const int shift =
+        width > 0 ? int(std::lround(truthPartTurnDegrees(part) / 360.0 * width)) % width : 0;
     ImageRGB out = prediction;
     for (std::size_t i = 0; i < pixels; ++i) {
         const float* t = &truth.pixels[3 * i];
@@ -51,10 +71,16 @@ ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPar
                 take = observed[i] != 0 && isLampOrWindow(t);
                 break;
             case TruthPart::UnobservedLampsAndWindows:
+            case TruthPart::UnobservedLampsAndWindowsTurned30:
+            case TruthPart::UnobservedLampsAndWindowsTurned60:
                 take = observed[i] == 0 && isLampOrWindow(t);
                 break;
         }
-        if (take) std::copy(t, t + 3, &out.pixels[3 * i]);
+        if (!take) continue;
+        const std::size_t row = i / std::size_t(width);
+        const std::size_t column =
+            (i % std::size_t(width) + std::size_t(shift)) % std::size_t(width);
+        std::copy(t, t + 3, &out.pixels[3 * (row * std::size_t(width) + column)]);
     }
     return out;
 }

@@ -51,6 +51,33 @@ TEST(TruthSplice, EachPartTakesItsPixelsFromTheTruthAndKeepsTheRest) {
         << "only the unobserved pixel whose true luminance is above 1";
 }
 
+// A 12x1 envmap, 30 degrees a column: an observed window at column 0, unobserved lamps at
+// columns 2 and 11 (the last column, to see the turn wrap around).
+TEST(TruthSplice, TurnedPartsMoveTheUnseenLampsSidewaysAndLeaveTheirPlaceAsPredicted) {
+    ImageRGB prediction(12, 1), truth(12, 1);
+    std::vector<std::uint8_t> observed(12, 0);
+    observed[0] = 1;
+    for (int x = 0; x < 12; ++x)
+        for (int c = 0; c < 3; ++c) {
+            prediction.at(x, 0)[c] = 0.1f;
+            truth.at(x, 0)[c] = x == 0 ? 2.0f : x == 2 ? 3.0f : x == 11 ? 5.0f : 0.4f;
+        }
+    std::vector<float> turned30(12, 0.1f), turned60(12, 0.1f);
+    turned30[3] = 3.0f;  // column 2 + 1
+    turned30[0] = 5.0f;  // column 11 + 1, wrapped
+    turned60[4] = 3.0f;
+    turned60[1] = 5.0f;
+    EXPECT_DOUBLE_EQ(truthPartTurnDegrees(TruthPart::UnobservedLampsAndWindowsTurned30), 30.0);
+    EXPECT_DOUBLE_EQ(truthPartTurnDegrees(TruthPart::UnobservedLampsAndWindows), 0.0);
+    EXPECT_EQ(Case::reds(spliceTruth(prediction, truth,
+                                     TruthPart::UnobservedLampsAndWindowsTurned30, observed)),
+              turned30)
+        << "the observed window stays out, and columns 2 and 11 keep the prediction";
+    EXPECT_EQ(Case::reds(spliceTruth(prediction, truth,
+                                     TruthPart::UnobservedLampsAndWindowsTurned60, observed)),
+              turned60);
+}
+
 TEST(TruthSplice, MismatchedSizesAreAClearError) {
     const Case k;
     EXPECT_THROW(spliceTruth(ImageRGB(2, 1), k.truth, TruthPart::Observed, k.observed), InputError);
@@ -64,6 +91,10 @@ TEST(TruthSplice, EveryPartHasItsOwnName) {
                  truthPartName(TruthPart::ObservedLampsAndWindows));
     EXPECT_STRNE(truthPartName(TruthPart::ObservedLampsAndWindows),
                  truthPartName(TruthPart::UnobservedLampsAndWindows));
+    EXPECT_STRNE(truthPartName(TruthPart::UnobservedLampsAndWindows),
+                 truthPartName(TruthPart::UnobservedLampsAndWindowsTurned30));
+    EXPECT_STRNE(truthPartName(TruthPart::UnobservedLampsAndWindowsTurned30),
+                 truthPartName(TruthPart::UnobservedLampsAndWindowsTurned60));
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     std::ostringstream progress;
     const EvalReport report = evaluate(o, progress);
 
-    ASSERT_EQ(report.headroom.size(), 5u);
+    ASSERT_EQ(report.headroom.size(), 7u);
     const MethodScores& ours = report.methods[0];
     const MethodScores &observed = report.headroom[0], &unobserved = report.headroom[1];
     ASSERT_EQ(observed.psnrAll.size(), ours.psnrAll.size());
@@ -72,6 +72,9 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
         if (!std::isnan(ours.psnrObserved[i]))
             EXPECT_EQ(unseenLamps.psnrObserved[i], ours.psnrObserved[i]);
     EXPECT_NE(report.markdown.find("| ours + true unobserved lamps and windows |"),
+              std::string::npos)
+        << report.markdown;
+    EXPECT_NE(report.markdown.find("| ours + true unobserved lamps and windows, turned 60 deg |"),
               std::string::npos)
         << report.markdown;
     EXPECT_NE(report.markdown.find("| method | highlight recall | highlight precision |"),
