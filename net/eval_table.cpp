@@ -149,7 +149,8 @@ std::string headroomTableMarkdown(const MethodScores& ours, const std::vector<Me
     std::ostringstream md;
     md << "\nHeadroom: ours with one part of the truth put in, so each row says what a perfect "
           "job on that part alone would give (lamps and windows: the pixels whose true "
-          "luminance is above 1):\n\n"
+          "luminance is above 1; turned: put in that many degrees to the side, about the "
+          "vertical axis, so the row says what placing them that far off would give):\n\n"
        << "| method | PSNR all (dB) | angular all (deg) | irradiance rel. error | radiance ratio "
           "|\n|---|---|---|---|---|\n";
     const auto line = [&](const MethodScores& m) {

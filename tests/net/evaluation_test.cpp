@@ -74,6 +74,9 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     EXPECT_NE(report.markdown.find("| ours + true unobserved lamps and windows |"),
               std::string::npos)
         << report.markdown;
+    EXPECT_NE(report.markdown.find("turned: put in that many degrees to the side"),
+              std::string::npos)
+        << report.markdown;
     EXPECT_NE(report.markdown.find("| ours + true unobserved lamps and windows, turned 60 deg |"),
               std::string::npos)
         << report.markdown;
