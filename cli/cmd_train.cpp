@@ -33,7 +33,9 @@ void addTrainCommand(CLI::App& app, const int& threads) {
            "standard (5 x 64^3 from 192x144, 32 planes, HDR), wide (standard with completion "
            "networks twice as wide), paper, or small; a '+profile' suffix (wide+profile) also "
            "gives the completion networks the observed colour at each height of the room, and "
-           "'+emitters' (wide+emitters) adds a head that places 3 compact lamps in the volume")
+           "'+emitters' (wide+emitters) adds a head that places 3 compact lamps in the volume, "
+           "'+photo' with it (wide+emitters+photo) a head that also reads the photo and puts "
+           "each lamp at the peak of its distribution over places")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->out,
                     "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")
@@ -140,6 +142,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "With an emitter head (--config wide+emitters): weight of the squared "
                     "distance (m^2) from each of its lamps to the nearest lamp or window of the "
                     "example's scene.json; 0: off")
+        ->capture_default_str();
+    cmd->add_option("--emitter-cell-weight", o->emitterCellWeight,
+                    "With an emitter head (best --config wide+emitters+photo): weight of the "
+                    "divergence (nats) of its distribution over level 0's cells from the cells "
+                    "of the example's true lamps and windows (scene.json); 0: off")
         ->capture_default_str();
     cmd->add_option("--closure-weight", o->closureWeight,
                     "Weight of the closed-room prior (the mean transmittance an envmap ray has "

@@ -76,11 +76,12 @@ NetConfig NetConfig::paper() {
 NetConfig NetConfig::byName(const std::string& name) {
     // The base name, then any of the suffixes.
     std::string base = name;
-    bool profile = false, emitters = false;
+    bool profile = false, emitters = false, photo = false;
     for (bool found = true; found;) {
         found = false;
         for (auto [suffix, flag] : {std::pair<std::string, bool*>{"+profile", &profile},
-                                    std::pair<std::string, bool*>{"+emitters", &emitters}}) {
+                                    std::pair<std::string, bool*>{"+emitters", &emitters},
+                                    std::pair<std::string, bool*>{"+photo", &photo}}) {
             if (!*flag && base.size() > suffix.size() &&
                 base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0) {
                 base.resize(base.size() - suffix.size());
@@ -100,10 +101,12 @@ NetConfig NetConfig::byName(const std::string& name) {
     else
         throw InputError("unknown configuration '" + name +
                          "' (expected 'standard', 'wide', 'small' or 'paper', optionally with "
-                         "'+profile' and '+emitters')");
+                         "'+profile', '+emitters' and '+emitters+photo')");
     c.name = name;
     c.heightProfile = profile;
     c.emitters = emitters ? kSuffixEmitters : 0;
+    c.emitterPhoto = photo;
+    c.validate();  // "+photo" without "+emitters"
     return c;
 }
 
@@ -134,6 +137,8 @@ void NetConfig::validate() const {
     if (emitters < 0 || emitters > kMaxEmitters)
         throw InputError("the emitter count must be in [0, " + std::to_string(kMaxEmitters) + "]");
     if (emitters > 0 && !hdr) throw InputError("emitters need HDR colours");
+    if (emitterPhoto && emitters == 0)
+        throw InputError("'+photo' is the emitter head's: it needs '+emitters'");
     if (completionScale != 1 && completionScale != 2)
         throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
@@ -160,6 +165,7 @@ std::string NetConfig::toJson() const {
                               {"colour_anchor", colourAnchor},
                               {"height_profile", heightProfile},
                               {"emitters", emitters},
+                              {"emitter_photo", emitterPhoto},
                               {"prune_alpha", pruneAlpha},
                               {"highlight_gain", highlightGain}};
     return j.dump();
@@ -198,6 +204,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.colourAnchor = j.value("colour_anchor", false);
         c.heightProfile = j.value("height_profile", false);
         c.emitters = j.value("emitters", 0);
+        c.emitterPhoto = j.value("emitter_photo", false);
         c.pruneAlpha = j.value("prune_alpha", 0.0);
         c.highlightGain = j.value("highlight_gain", 1.0);
     } catch (const nlohmann::json::exception& e) {

@@ -59,6 +59,11 @@ struct NetConfig {
     // Lamps placed by an emitter head beside the completion networks (net/emitter_head.h):
     // how many; 0 for none. Named by a "+emitters" suffix (kSuffixEmitters of them).
     int emitters = 0;
+    // The emitter head also reads the reference photo (the shading the room's lamps cast on
+    // what it shows) and places each lamp at the peak of its distribution over level 0's cells,
+    // not at the distribution's mean (net/emitter_head.h). Named by a "+photo" suffix, with
+    // "+emitters".
+    bool emitterPhoto = false;
     // Voxel alpha below which the model's volumes are left empty: the threshold it was trained
     // under (train --prune-alpha), so predict prunes there by default and the walls it learnt
     // to make opaque survive. 0: trained unpruned; predict uses its own default.
@@ -73,7 +78,8 @@ struct NetConfig {
     static NetConfig standard();
     static NetConfig wide();
     // "standard", "wide", "small" or "paper", each optionally followed by "+profile"
-    // (heightProfile on) and "+emitters" (kSuffixEmitters emitters), in either order; throws
+    // (heightProfile on), "+emitters" (kSuffixEmitters emitters) and "+photo" (emitterPhoto
+    // on, with "+emitters"), in any order; throws
     // InputError otherwise.
     static NetConfig byName(const std::string& name);
 

@@ -19,6 +19,10 @@ constexpr double kPositionUnit = 4.0;  // metres, as the completion networks see
 // mean luminance.
 constexpr double kStartOpacityLogit = -4.0;
 constexpr double kStartLogBrightness = 3.0;
+// The photo encoder of a "+photo" head: channels per stage, and the grid of places it keeps
+// (rows x columns) before mixing them into one feature vector.
+constexpr int64_t kPhotoChannels = 32;
+constexpr int64_t kPhotoRows = 3, kPhotoColumns = 4;
 
 // Voxel centres of `level` as [R, R, R, 3] (z, y, x order of the cubes), on `like`'s device.
 torch::Tensor centresLike(const VolumeLayout& layout, int level, const torch::Tensor& like) {
@@ -27,8 +31,21 @@ torch::Tensor centresLike(const VolumeLayout& layout, int level, const torch::Te
 
 }  // namespace
 
-EmitterHeadImpl::EmitterHeadImpl(int k) : count(k) {
+EmitterHeadImpl::EmitterHeadImpl(int k, bool photo) : count(k), readsPhoto(photo) {
     down1 = register_module("down1", PreActConv(kInputChannels, 16, 2));
+    if (readsPhoto) {
+        namespace nn = torch::nn;
+        const auto conv = [](int64_t in, int64_t out) {
+            return nn::Conv2d(nn::Conv2dOptions(in, out, 3).stride(2).padding(1));
+        };
+        photoEncoder = register_module(
+            "photo_encoder",
+            nn::Sequential(conv(3, 16), nn::ReLU(), conv(16, kPhotoChannels), nn::ReLU(),
+                           conv(kPhotoChannels, kPhotoChannels), nn::ReLU(),
+                           conv(kPhotoChannels, kPhotoChannels), nn::ReLU()));
+        photoToCells = register_module("photo_to_cells",
+                                       nn::Linear(kPhotoChannels * kPhotoRows * kPhotoColumns, 32));
+    }
     down2 = register_module("down2", PreActConv(16, 32, 2));
     mix = register_module("mix", PreActConv(32, 32, 1));
     where = register_module("where", torch::nn::Conv3d(torch::nn::Conv3dOptions(32, k, 1)));
@@ -46,21 +63,35 @@ EmitterHeadImpl::EmitterHeadImpl(int k) : count(k) {
 }
 
 Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayout& layout,
-                                  const torch::Tensor& photoLuminance) {
+                                  const torch::Tensor& photoLuminance, const torch::Tensor& photo) {
     const auto cube = level0.detach();
     const auto centres = centresLike(layout, 0, cube).permute({3, 0, 1, 2}).unsqueeze(0);
     auto x = torch::cat({radianceFeature(cube.narrow(1, 0, 3).clamp_min(0)), cube.narrow(1, 3, 1),
                          centres / kPositionUnit},
                         1);
     x = F::adaptive_avg_pool3d(x, F::AdaptiveAvgPool3dFuncOptions(kReadResolution));
-    const auto features = mix(down2(down1(x)));  // [1, 32, 8, 8, 8]
+    auto features = down2(down1(x));  // [1, 32, 8, 8, 8]
+    if (readsPhoto) {
+        TORCH_CHECK(photo.defined(), "a +photo emitter head needs the photo");
+        // The photo relative to its own mean luminance, so that the exposure does not matter,
+        // as ln(1 + x) like every radiance the networks read.
+        const auto relative = radianceFeature(photo.clamp_min(0) / photoLuminance);
+        const auto places =
+            F::adaptive_avg_pool2d(photoEncoder->forward(relative),
+                                   F::AdaptiveAvgPool2dFuncOptions({kPhotoRows, kPhotoColumns}));
+        features = features + photoToCells(places.flatten(1)).reshape({1, -1, 1, 1, 1});
+    }
+    features = mix(features);
 
     Emitters e;
     const auto cellCentres =
         F::adaptive_avg_pool3d(centres, F::AdaptiveAvgPool3dFuncOptions(kCells))
             .reshape({3, kCells * kCells * kCells})
-            .t();                                                                  // [cells, 3]
-    const auto weights = torch::softmax(where(features).reshape({count, -1}), 1);  // [K, cells]
+            .t();                                         // [cells, 3]
+    e.cellLogits = where(features).reshape({count, -1});  // [K, cells]
+    e.cellCentres = cellCentres;
+    const auto weights =
+        torch::softmax(readsPhoto ? kPeakSharpness * e.cellLogits : e.cellLogits, 1);
     e.position = torch::matmul(weights, cellCentres);
 
     const auto out = what(features.mean({2, 3, 4})).reshape({count, 6});

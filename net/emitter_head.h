@@ -9,6 +9,14 @@
 // added to every level as a Gaussian blob of density. Its light is compact by construction, so
 // making it brighter costs few pixels, and the irradiance loss can move it smoothly towards
 // the side the light comes from.
+//
+// The lamps a photo does not show can be placed only from the shading they cast on what it
+// does show. A "+photo" head (NetConfig::emitterPhoto) therefore also reads the reference
+// photo through a small 2D encoder, and is trained as a classifier: its distribution over
+// level 0's cells against the cells of the scene's true lamps and windows (net/losses.h
+// emitterCellLoss). A squared distance would teach the mean of where lamps may be, which is
+// nowhere in particular; a distribution keeps the places apart, and each lamp sits at the peak
+// of its own (a sharpened soft argmax), not at its mean.
 #pragma once
 
 #include "net/torch_pch.h"
@@ -32,18 +40,33 @@ struct Emitters {
     torch::Tensor radius;    // [K] metres: the Gaussian's standard deviation
     torch::Tensor alpha;     // [K] voxel opacity at the centre, in (0, 1)
     torch::Tensor radiance;  // [K, 3] linear RGB
+    // Each lamp's position logits over level 0's 8^3 cells [K, cells], and the cells' centres
+    // [cells, 3] (metres): what the cell loss reads.
+    torch::Tensor cellLogits, cellCentres;
 };
 
+// A "+photo" head places each lamp at softmax(kPeakSharpness x logits) over the cells: near the
+// peak of its distribution, still differentiable.
+constexpr double kPeakSharpness = 4.0;
+
 struct EmitterHeadImpl : torch::nn::Module {
-    explicit EmitterHeadImpl(int count);
+    // readsPhoto: the "+photo" design (NetConfig::emitterPhoto).
+    EmitterHeadImpl(int count, bool readsPhoto);
     // level0: the completed level-0 cube [1, 4, R, R, R] (R a multiple of 16; read, not
     // trained through); photoLuminance: the photo's mean linear luminance, a scalar tensor
-    // (the emitters' radiance is relative to it, so a brighter exposure brightens them too).
+    // (the emitters' radiance is relative to it, so a brighter exposure brightens them too);
+    // photo: the linear reference image [1, 3, H, W] (H, W multiples of 16), read only by a
+    // "+photo" head.
     Emitters forward(const torch::Tensor& level0, const VolumeLayout& layout,
-                     const torch::Tensor& photoLuminance);
+                     const torch::Tensor& photoLuminance, const torch::Tensor& photo = {});
 
     int count;
+    bool readsPhoto;
     PreActConv down1{nullptr}, down2{nullptr}, mix{nullptr};
+    // "+photo": four stride-2 convolutions over the photo, pooled to 3 x 4 places and mapped to
+    // one feature vector that every cell sees.
+    torch::nn::Sequential photoEncoder{nullptr};
+    torch::nn::Linear photoToCells{nullptr};
     torch::nn::Conv3d where{nullptr};  // one position logit per emitter and 8^3 cell
     torch::nn::Linear what{nullptr};   // per emitter: radius, brightness, opacity, colour (3)
 };

@@ -43,7 +43,8 @@ LighthouseNetImpl::LighthouseNetImpl(const NetConfig& c) : config(c) {
         completion.push_back(register_module(
             "completion" + std::to_string(k),
             UNet3d((k == 0 ? 4 : 8) + positionChannels + profileChannels, 5, c.baseWidth)));
-    if (c.emitters > 0) emitterHead = register_module("emitter_head", EmitterHead(c.emitters));
+    if (c.emitters > 0)
+        emitterHead = register_module("emitter_head", EmitterHead(c.emitters, c.emitterPhoto));
 }
 
 torch::Tensor LighthouseNetImpl::logColourAnchor(const torch::Tensor& refLinear) const {
@@ -181,7 +182,7 @@ PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) 
     if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout, logAnchor);
     if (runCompletion && emitterHead) {
         const auto photoLuminance = luminanceTensor(in.refLinear).mean().clamp_min(1e-3);
-        result.emitters = emitterHead(result.cubes[0], in.layout, photoLuminance);
+        result.emitters = emitterHead(result.cubes[0], in.layout, photoLuminance, in.refLinear);
         result.cubes = addEmitters(result.cubes, result.emitters, in.layout);
     }
     return result;

@@ -75,6 +75,8 @@ void TrainOptions::validate() const {
         throw InputError("--alpha-binary-weight must be in [0, 1000]");
     if (!(emitterPositionWeight >= 0 && emitterPositionWeight <= 1000))
         throw InputError("--emitter-position-weight must be in [0, 1000]");
+    if (!(emitterCellWeight >= 0 && emitterCellWeight <= 1000))
+        throw InputError("--emitter-cell-weight must be in [0, 1000]");
     if (!(closureWeight >= 0 && closureWeight <= 100))
         throw InputError("--closure-weight must be in [0, 100]");
     if (!(directAdversarialWeight >= 0 && directAdversarialWeight <= 10))
@@ -106,9 +108,14 @@ struct LogRow {
     double learningRate = 0, itPerSecond = 0;
     double valPsnr = NAN, valAngular = NAN;
     double voxel = 0, depth = 0;
+    double emitterCells = 0;  // emitterCellLoss, unweighted (nats); not in the CSV log
     double secondsData = 0, secondsForward = 0, secondsBackward = 0;  // per iteration, mean
     double secondsAllReduce = 0;  // per iteration, mean: data-parallel communication
 };
+
+// Loss terms summed per iteration: total, view, envmap, adversarial, discriminator, voxel,
+// depth, emitter cells.
+constexpr int kLossTerms = 8;
 
 constexpr const char* kLogHeader =
     "iteration,stage,loss_total,loss_view,loss_envmap,loss_adversarial,loss_discriminator,lr,"
@@ -442,7 +449,8 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
                                                config.width, config.height))
                          .narrow(1, 0, 1)
                          .to(device);
-    if (o.emitterPositionWeight > 0 && fs::is_regular_file(dir / dataset::kScene)) {
+    if ((o.emitterPositionWeight > 0 || o.emitterCellWeight > 0) &&
+        fs::is_regular_file(dir / dataset::kScene)) {
         std::vector<float> centres;  // every emitting primitive: lamps and window panes
         for (const synth::Primitive& prim :
              synth::loadScene((dir / dataset::kScene).string()).primitives)
@@ -636,6 +644,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.emitterPositionWeight > 0)
         progress << "; emitter head also " << o.emitterPositionWeight
                  << " x squared distance to the nearest true lamp or window (scene.json)";
+    if (o.emitterCellWeight > 0)
+        progress << "; emitter head also " << o.emitterCellWeight
+                 << " x divergence of its cells from the true lamps' and windows' (scene.json)";
     if (o.directAdversarialWeight > 0)
         progress << "; envmaps also " << o.directAdversarialWeight
                  << " x the PatchGAN generator loss, from the first step";
@@ -673,8 +684,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         // Everything random in this iteration comes from (seed, iteration, example of the batch).
         const int perRank = o.batch / world;
         const double commBefore = comm ? comm->communicationSeconds() : 0;
-        double sums[7] = {
-            0, 0, 0, 0, 0, 0, 0};  // total, view, envmap, adversarial, discriminator, voxel, depth
+        // total, view, envmap, adversarial, discriminator, voxel, depth, emitter cells
+        double sums[kLossTerms] = {0, 0, 0, 0, 0, 0, 0, 0};
         s.optimizer->zero_grad();
         for (int j = rank * perRank; j < (rank + 1) * perRank; ++j) {
             Random rng(j == 0 ? mixSeed(o.seed, uint64_t(it))
@@ -697,6 +708,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}),
                           discLoss = torch::zeros({});
             torch::Tensor voxLoss = torch::zeros({}), depthLoss = torch::zeros({});
+            torch::Tensor cellLoss = torch::zeros({});  // emitterCellLoss, unweighted
             if (ex.refDepth.defined()) {
                 depthLoss = mpiDepthLoss(out.mpi, ex.inputs.depths, ex.refDepth);
                 loss = loss + depthLoss;
@@ -744,6 +756,12 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                     ex.lampCentres.defined())
                     loss = loss + o.emitterPositionWeight *
                                       emitterPositionLoss(out.emitters.position, ex.lampCentres);
+                if (o.emitterCellWeight > 0 && out.emitters.cellLogits.defined() &&
+                    ex.lampCentres.defined()) {
+                    cellLoss = emitterCellLoss(out.emitters.cellLogits, out.emitters.cellCentres,
+                                               ex.lampCentres);
+                    loss = loss + o.emitterCellWeight * cellLoss;
+                }
                 if (stage >= 3) {
                     // Discriminator step on real vs (detached) predicted envmaps, then the
                     // generator term. Data-parallel: one step per example of the rank's slice, on
@@ -766,18 +784,19 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             clock = std::chrono::steady_clock::now();
             (o.batch > 1 ? loss / o.batch : loss).backward();
             window.secondsBackward += secondsSince(clock);
-            const torch::Tensor* terms[7] = {&loss,     &viewLoss, &envLoss,  &advLoss,
-                                             &discLoss, &voxLoss,  &depthLoss};
-            for (int t = 0; t < 7; ++t) sums[t] += terms[t]->item<double>() / o.batch;
+            const torch::Tensor* terms[kLossTerms] = {&loss,     &viewLoss, &envLoss,   &advLoss,
+                                                      &discLoss, &voxLoss,  &depthLoss, &cellLoss};
+            for (int t = 0; t < kLossTerms; ++t) sums[t] += terms[t]->item<double>() / o.batch;
         }
         auto clock = std::chrono::steady_clock::now();
         zeroNonFiniteGradients(s.net->parameters());
         if (comm) {
             comm->allReduceGradients(s.net->parameters(), "the gradients' all-reduce");
             std::vector<torch::Tensor> losses = {
-                torch::tensor(std::vector<double>(sums, sums + 7), torch::kFloat64).to(device)};
+                torch::tensor(std::vector<double>(sums, sums + kLossTerms), torch::kFloat64)
+                    .to(device)};
             comm->allReduceSum(losses, "the losses' all-reduce");
-            for (int t = 0; t < 7; ++t) sums[t] = losses[0][t].item<double>();
+            for (int t = 0; t < kLossTerms; ++t) sums[t] = losses[0][t].item<double>();
             window.secondsAllReduce += comm->communicationSeconds() - commBefore;
         }
         torch::nn::utils::clip_grad_norm_(s.net->parameters(), kGradientClipNorm);
@@ -793,6 +812,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         window.discriminator += sums[4];
         window.voxel += sums[5];
         window.depth += sums[6];
+        window.emitterCells += sums[7];
         ++windowCount;
 
         const int done = it + 1;
@@ -810,6 +830,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             row.discriminator = window.discriminator / windowCount;
             row.voxel = window.voxel / windowCount;
             row.depth = window.depth / windowCount;
+            row.emitterCells = window.emitterCells / windowCount;
             row.secondsData = window.secondsData / windowCount;
             row.secondsForward = window.secondsForward / windowCount;
             row.secondsBackward = window.secondsBackward / windowCount;
@@ -828,6 +849,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             if (direct) progress << ", voxel " << row.voxel << ", depth " << row.depth;
             if (!direct || stage >= 3) progress << ", adv " << row.adversarial;
             if (stage >= 3) progress << ", discriminator " << row.discriminator;
+            if (o.emitterCellWeight > 0) progress << ", emitter cells " << row.emitterCells;
             progress << ")  " << std::setprecision(2) << row.itPerSecond << " it/s (data "
                      << row.secondsData << " s, forward " << row.secondsForward << " s, backward "
                      << row.secondsBackward << " s";

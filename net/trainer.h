@@ -121,6 +121,11 @@ struct TrainOptions {
     // the example's scene.json. Direct supervision of where lamps are, which the render losses
     // alone did not teach. 0: off.
     double emitterPositionWeight = 0.0;
+    // Weight of the lamp-cell loss (net/losses.h emitterCellLoss) on the emitter head's
+    // distribution over level 0's cells: the divergence from the cells of the example's true
+    // lamps and windows (scene.json). Where the position loss teaches the mean of where lamps
+    // may be, this keeps the likely places apart. 0: off.
+    double emitterCellWeight = 0.0;
     // Weight of the closed-room prior (net/losses.h closureLoss): the transmittance each
     // envmap ray has left behind the (pruned) volume. The training rooms are closed; fog lets
     // rays leave through the walls, dark and slow to render. 0: off.

@@ -1,6 +1,8 @@
 // The emitter head: its blobs' known values in the cubes (opacity, colour, mixing with what a
 // voxel already holds, widening on coarse levels), a gradient that moves a lamp to where the
-// loss wants light, the "+emitters" configurations, and a model fine-tuned from one without it.
+// loss wants light, the "+emitters" configurations, and a model fine-tuned from one without it;
+// the lamp-cell loss's known values, and a "+photo" head that reads the photo and, trained on
+// that loss alone, puts its lamps on the true one.
 #include "net/emitter_head.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
@@ -116,6 +118,69 @@ TEST(EmitterPositionLoss, TheMeanSquaredDistanceToTheNearestTrueLamp) {
     const auto truth = torch::tensor({0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 5.f, 5.f, 5.f}).reshape({3, 3});
     EXPECT_NEAR(emitterPositionLoss(lamps, truth).item<double>(), 0.5, 1e-6);
     EXPECT_EQ(emitterPositionLoss(truth, truth).item<double>(), 0.0);
+}
+
+TEST(EmitterCellLoss, TheDivergenceFromTheTrueLampsCells) {
+    // Four cells 1 m apart along x; the true lamps lie nearest cells 0 and 2: t = (1/2, 0, 1/2, 0).
+    const auto centres =
+        torch::tensor({0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 2.f, 0.f, 0.f, 3.f, 0.f, 0.f}).reshape({4, 3});
+    const auto truth = torch::tensor({0.1f, 0.2f, 0.f, 2.3f, -0.1f, 0.f}).reshape({2, 3});
+    // Two lamps, each sure of one of the true cells: the mixture is t, the divergence 0.
+    const auto sure = torch::tensor({60.f, 0.f, 0.f, 0.f, 0.f, 0.f, 60.f, 0.f}).reshape({2, 4});
+    EXPECT_NEAR(emitterCellLoss(sure, centres, truth).item<double>(), 0.0, 1e-6);
+    // Uniform: p = 1/4 everywhere, KL = 2 x 1/2 ln((1/2) / (1/4)) = ln 2.
+    EXPECT_NEAR(emitterCellLoss(torch::zeros({2, 4}), centres, truth).item<double>(), std::log(2.0),
+                1e-6);
+    // Both lamps sure of cell 0: half of t has p ~ e^-60, a divergence of about 30.
+    const auto oneSided = torch::tensor({60.f, 0.f, 0.f, 0.f, 60.f, 0.f, 0.f, 0.f}).reshape({2, 4});
+    EXPECT_GT(emitterCellLoss(oneSided, centres, truth).item<double>(), 25.0);
+    // Two true lamps in one cell count twice there: t = (1, 0, 0, 0), KL = ln 4 when uniform.
+    const auto sameCell = torch::tensor({0.f, 0.f, 0.f, 0.3f, 0.f, 0.f}).reshape({2, 3});
+    EXPECT_NEAR(emitterCellLoss(torch::zeros({2, 4}), centres, sameCell).item<double>(),
+                std::log(4.0), 1e-6);
+}
+
+TEST(EmitterHead, APhotoHeadIsNamedBySuffixAndNeedsTheEmitters) {
+    const NetConfig photo = NetConfig::byName("wide+emitters+photo");
+    EXPECT_TRUE(photo.emitterPhoto);
+    EXPECT_EQ(photo.emitters, kSuffixEmitters);
+    EXPECT_TRUE(NetConfig::byName("wide+photo+emitters").emitterPhoto);
+    EXPECT_FALSE(NetConfig::byName("wide+emitters").emitterPhoto);
+    EXPECT_FALSE(photo.sameParameters(NetConfig::byName("wide+emitters")));  // the encoder
+    EXPECT_TRUE(NetConfig::fromJson(photo.toJson(), "test").emitterPhoto);
+    EXPECT_THROW(NetConfig::byName("wide+photo"), InputError);  // no head to read the photo
+    auto old = nlohmann::json::parse(NetConfig::byName("wide+emitters").toJson());
+    old.erase("emitter_photo");
+    EXPECT_FALSE(NetConfig::fromJson(old.dump(), "test").emitterPhoto);
+}
+
+TEST(EmitterHead, APhotoHeadTrainedOnTheCellLossPutsItsLampsOnTheTrueOne) {
+    // Level 0 of 16^3 voxels over [-4, 4]^3 m: 8^3 cells of 1 m. One true lamp at the centre of
+    // cell (x 6, y 1, z 5), far from the middle where an untrained head puts its lamps.
+    torch::manual_seed(3);
+    EmitterHead head(3, true);
+    const auto level0 = torch::rand({1, 4, 16, 16, 16});
+    const auto photo = torch::rand({1, 3, 32, 48});
+    const auto luminance = torch::tensor(0.5f);
+    const auto lamp = torch::tensor({2.5f, -2.5f, 1.5f}).reshape({1, 3});
+    Emitters start = head(level0, kLayout, luminance, photo);
+    ASSERT_EQ(start.cellLogits.sizes(), torch::IntArrayRef({3, 512}));
+    EXPECT_GT((start.position - lamp).norm(2, 1).min().item<double>(), 2.5);
+    // The photo reaches the cells: another photo, other logits.
+    const Emitters other = head(level0, kLayout, luminance, torch::rand({1, 3, 32, 48}));
+    EXPECT_GT((other.cellLogits - start.cellLogits).abs().max().item<double>(), 1e-6);
+    torch::optim::Adam adam(head->parameters(), torch::optim::AdamOptions(1e-2));
+    for (int step = 0; step < 60; ++step) {
+        const Emitters e = head(level0, kLayout, luminance, photo);
+        const auto loss = emitterCellLoss(e.cellLogits, e.cellCentres, lamp);
+        adam.zero_grad();
+        loss.backward();
+        adam.step();
+    }
+    const Emitters trained = head(level0, kLayout, luminance, photo);
+    EXPECT_LT(emitterCellLoss(trained.cellLogits, trained.cellCentres, lamp).item<double>(), 0.1);
+    // Every lamp at the peak, within half a cell of the true one.
+    EXPECT_LT((trained.position - lamp).norm(2, 1).max().item<double>(), 0.5);
 }
 
 TEST(EmitterHead, ConfigurationsAreNamedBySuffix) {

@@ -68,9 +68,10 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     EXPECT_GT(withHighlights, 0) << "no envmap with a lamp or window to test on";
     // The unobserved lamps and windows change only unobserved pixels.
     const MethodScores& unseenLamps = report.headroom[4];
-    for (size_t i = 0; i < ours.psnrObserved.size(); ++i)
+    for (size_t i = 0; i < ours.psnrObserved.size(); ++i) {
         if (!std::isnan(ours.psnrObserved[i]))
             EXPECT_EQ(unseenLamps.psnrObserved[i], ours.psnrObserved[i]);
+    }
     EXPECT_NE(report.markdown.find("| ours + true unobserved lamps and windows |"),
               std::string::npos)
         << report.markdown;

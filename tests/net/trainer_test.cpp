@@ -212,6 +212,30 @@ TEST_F(TrainerTest, TheEmitterPositionWeightSteersTheHead) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, TheEmitterCellWeightSteersAPhotoHead) {
+    // With the lamp-cell loss on, a "+photo" head's gradients differ, so do the weights, and the
+    // log names the term and reports its value; a negative weight is refused.
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_emitter_cells", 0.0, 10.0,
+                  [](TrainOptions& o, double w) {
+                      NetConfig config = test::tinyHdrConfig();
+                      config.emitters = 3;
+                      config.emitterPhoto = true;
+                      o.configOverride = config;
+                      o.emitterCellWeight = w;
+                  },
+                  log),
+              1e-6)
+        << "the lamp-cell weight changed nothing";
+    EXPECT_NE(log.str().find("emitter head also 10 x divergence of its cells"), std::string::npos)
+        << log.str();
+    EXPECT_NE(log.str().find(", emitter cells "), std::string::npos) << log.str();
+    TrainOptions negative = options("lighthouse_trainer_emitter_cells_negative");
+    negative.emitterCellWeight = -1.0;
+    EXPECT_THROW(negative.validate(), InputError);
+}
+
 TEST_F(TrainerTest, TheViewHdrWeightSteersTraining) {
     // The tiny set's examples carry tgt.exr: with the HDR view loss on, the MPI's gradients
     // differ, so do the weights, and the log names the term; a negative weight is refused.
