@@ -35,7 +35,8 @@ void addTrainCommand(CLI::App& app, const int& threads) {
            "gives the completion networks the observed colour at each height of the room, and "
            "'+emitters' (wide+emitters) adds a head that places 3 compact lamps in the volume, "
            "'+photo' with it (wide+emitters+photo) a head that also reads the photo and puts "
-           "each lamp at the peak of its distribution over places")
+           "each lamp at the peak of its distribution over places, and '+cells' with both a "
+           "classifier of where lamps are from the photo alone (see --pretrain-lamp-cells)")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->out,
                     "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")
@@ -147,6 +148,11 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "With an emitter head (best --config wide+emitters+photo): weight of the "
                     "divergence (nats) of its distribution over level 0's cells from the cells "
                     "of the example's true lamps and windows (scene.json); 0: off")
+        ->capture_default_str();
+    cmd->add_option("--pretrain-lamp-cells", o->pretrainLampCellEpochs,
+                    "With --config ...+emitters+photo+cells: epochs of training the head's "
+                    "photo classifier of where lamps are on the training photos alone, before "
+                    "the first step (scored on the held-out scenes in the log); 0: none")
         ->capture_default_str();
     cmd->add_option("--closure-weight", o->closureWeight,
                     "Weight of the closed-room prior (the mean transmittance an envmap ray has "

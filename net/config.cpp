@@ -76,12 +76,13 @@ NetConfig NetConfig::paper() {
 NetConfig NetConfig::byName(const std::string& name) {
     // The base name, then any of the suffixes.
     std::string base = name;
-    bool profile = false, emitters = false, photo = false;
+    bool profile = false, emitters = false, photo = false, cells = false;
     for (bool found = true; found;) {
         found = false;
         for (auto [suffix, flag] : {std::pair<std::string, bool*>{"+profile", &profile},
                                     std::pair<std::string, bool*>{"+emitters", &emitters},
-                                    std::pair<std::string, bool*>{"+photo", &photo}}) {
+                                    std::pair<std::string, bool*>{"+photo", &photo},
+                                    std::pair<std::string, bool*>{"+cells", &cells}}) {
             if (!*flag && base.size() > suffix.size() &&
                 base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0) {
                 base.resize(base.size() - suffix.size());
@@ -101,12 +102,13 @@ NetConfig NetConfig::byName(const std::string& name) {
     else
         throw InputError("unknown configuration '" + name +
                          "' (expected 'standard', 'wide', 'small' or 'paper', optionally with "
-                         "'+profile', '+emitters' and '+emitters+photo')");
+                         "'+profile', '+emitters', '+emitters+photo' and '+emitters+photo+cells')");
     c.name = name;
     c.heightProfile = profile;
     c.emitters = emitters ? kSuffixEmitters : 0;
     c.emitterPhoto = photo;
-    c.validate();  // "+photo" without "+emitters"
+    c.emitterPhotoCells = cells;
+    c.validate();  // "+photo" without "+emitters", "+cells" without "+photo"
     return c;
 }
 
@@ -139,6 +141,8 @@ void NetConfig::validate() const {
     if (emitters > 0 && !hdr) throw InputError("emitters need HDR colours");
     if (emitterPhoto && emitters == 0)
         throw InputError("'+photo' is the emitter head's: it needs '+emitters'");
+    if (emitterPhotoCells && !emitterPhoto)
+        throw InputError("'+cells' classifies the photo head's input: it needs '+emitters+photo'");
     if (completionScale != 1 && completionScale != 2)
         throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
@@ -166,6 +170,7 @@ std::string NetConfig::toJson() const {
                               {"height_profile", heightProfile},
                               {"emitters", emitters},
                               {"emitter_photo", emitterPhoto},
+                              {"emitter_photo_cells", emitterPhotoCells},
                               {"prune_alpha", pruneAlpha},
                               {"highlight_gain", highlightGain}};
     return j.dump();
@@ -205,6 +210,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.heightProfile = j.value("height_profile", false);
         c.emitters = j.value("emitters", 0);
         c.emitterPhoto = j.value("emitter_photo", false);
+        c.emitterPhotoCells = j.value("emitter_photo_cells", false);
         c.pruneAlpha = j.value("prune_alpha", 0.0);
         c.highlightGain = j.value("highlight_gain", 1.0);
     } catch (const nlohmann::json::exception& e) {

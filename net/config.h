@@ -64,6 +64,11 @@ struct NetConfig {
     // not at the distribution's mean (net/emitter_head.h). Named by a "+photo" suffix, with
     // "+emitters".
     bool emitterPhoto = false;
+    // The photo head also has a classifier of where lamps are from the photo alone, whose cell
+    // logits add to every lamp's, and which `train --pretrain-lamp-cells` trains on photos
+    // before the fine-tuning (net/lamp_cell_pretraining.h). Named by a "+cells" suffix, with
+    // "+emitters+photo".
+    bool emitterPhotoCells = false;
     // Voxel alpha below which the model's volumes are left empty: the threshold it was trained
     // under (train --prune-alpha), so predict prunes there by default and the walls it learnt
     // to make opaque survive. 0: trained unpruned; predict uses its own default.
@@ -78,8 +83,8 @@ struct NetConfig {
     static NetConfig standard();
     static NetConfig wide();
     // "standard", "wide", "small" or "paper", each optionally followed by "+profile"
-    // (heightProfile on), "+emitters" (kSuffixEmitters emitters) and "+photo" (emitterPhoto
-    // on, with "+emitters"), in any order; throws
+    // (heightProfile on), "+emitters" (kSuffixEmitters emitters), "+photo" (emitterPhoto on,
+    // with "+emitters") and "+cells" (emitterPhotoCells on, with "+photo"), in any order; throws
     // InputError otherwise.
     static NetConfig byName(const std::string& name);
 

@@ -23,6 +23,9 @@ constexpr double kStartLogBrightness = 3.0;
 // (rows x columns) before mixing them into one feature vector.
 constexpr int64_t kPhotoChannels = 32;
 constexpr int64_t kPhotoRows = 3, kPhotoColumns = 4;
+// Dropout in the "+cells" classifier: a few thousand training photos, each seen many times in
+// pretraining, are memorised without it (the held-out divergence rose after 10 epochs).
+constexpr double kPhotoCellsDropout = 0.3;
 
 // Voxel centres of `level` as [R, R, R, 3] (z, y, x order of the cubes), on `like`'s device.
 torch::Tensor centresLike(const VolumeLayout& layout, int level, const torch::Tensor& like) {
@@ -31,7 +34,9 @@ torch::Tensor centresLike(const VolumeLayout& layout, int level, const torch::Te
 
 }  // namespace
 
-EmitterHeadImpl::EmitterHeadImpl(int k, bool photo) : count(k), readsPhoto(photo) {
+EmitterHeadImpl::EmitterHeadImpl(int k, bool photo, bool classifies)
+    : count(k), readsPhoto(photo), classifiesPhoto(classifies) {
+    TORCH_CHECK(readsPhoto || !classifiesPhoto, "a photo classifier needs the photo encoder");
     down1 = register_module("down1", PreActConv(kInputChannels, 16, 2));
     if (readsPhoto) {
         namespace nn = torch::nn;
@@ -45,6 +50,19 @@ EmitterHeadImpl::EmitterHeadImpl(int k, bool photo) : count(k), readsPhoto(photo
                            conv(kPhotoChannels, kPhotoChannels), nn::ReLU()));
         photoToCells = register_module("photo_to_cells",
                                        nn::Linear(kPhotoChannels * kPhotoRows * kPhotoColumns, 32));
+    }
+    if (classifiesPhoto) {
+        namespace nn = torch::nn;
+        photoCells = register_module(
+            "photo_cells",
+            nn::Sequential(nn::Linear(kPhotoChannels * kPhotoRows * kPhotoColumns, 128), nn::ReLU(),
+                           nn::Dropout(kPhotoCellsDropout),
+                           nn::Linear(128, kCells * kCells * kCells)));
+        // Silent at the start: a head that was not pretrained begins as one without it.
+        torch::NoGradGuard noGrad;
+        auto last = photoCellsOutput();
+        last->weight.zero_();
+        last->bias.zero_();
     }
     down2 = register_module("down2", PreActConv(16, 32, 2));
     mix = register_module("mix", PreActConv(32, 32, 1));
@@ -71,15 +89,10 @@ Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayou
                         1);
     x = F::adaptive_avg_pool3d(x, F::AdaptiveAvgPool3dFuncOptions(kReadResolution));
     auto features = down2(down1(x));  // [1, 32, 8, 8, 8]
+    torch::Tensor places;             // the photo encoder's output, [1, channels x rows x columns]
     if (readsPhoto) {
-        TORCH_CHECK(photo.defined(), "a +photo emitter head needs the photo");
-        // The photo relative to its own mean luminance, so that the exposure does not matter,
-        // as ln(1 + x) like every radiance the networks read.
-        const auto relative = radianceFeature(photo.clamp_min(0) / photoLuminance);
-        const auto places =
-            F::adaptive_avg_pool2d(photoEncoder->forward(relative),
-                                   F::AdaptiveAvgPool2dFuncOptions({kPhotoRows, kPhotoColumns}));
-        features = features + photoToCells(places.flatten(1)).reshape({1, -1, 1, 1, 1});
+        places = photoPlaces(photo, photoLuminance);
+        features = features + photoToCells(places).reshape({1, -1, 1, 1, 1});
     }
     features = mix(features);
 
@@ -89,6 +102,7 @@ Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayou
             .reshape({3, kCells * kCells * kCells})
             .t();                                         // [cells, 3]
     e.cellLogits = where(features).reshape({count, -1});  // [K, cells]
+    if (classifiesPhoto) e.cellLogits = e.cellLogits + photoCells->forward(places);
     e.cellCentres = cellCentres;
     const auto weights =
         torch::softmax(readsPhoto ? kPeakSharpness * e.cellLogits : e.cellLogits, 1);
@@ -102,6 +116,31 @@ Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayou
     e.radiance = photoLuminance.reshape({1, 1}) *
                  hdrActivation(out.select(1, 1) + kStartLogBrightness).unsqueeze(1) * hue;
     return e;
+}
+
+torch::Tensor EmitterHeadImpl::photoPlaces(const torch::Tensor& photo,
+                                           const torch::Tensor& photoLuminance) {
+    TORCH_CHECK(photo.defined(), "a +photo emitter head needs the photo");
+    // The photo relative to its own mean luminance, so that the exposure does not matter, as
+    // ln(1 + x) like every radiance the networks read.
+    auto relative = radianceFeature(photo.clamp_min(0) / photoLuminance);
+    // A "+cells" head reads it at half size: where the lamps are is in the shading's large
+    // scale, and its classifier generalised better so (held-out divergence after pretraining).
+    if (classifiesPhoto) relative = F::avg_pool2d(relative, F::AvgPool2dFuncOptions(2));
+    return F::adaptive_avg_pool2d(photoEncoder->forward(relative),
+                                  F::AdaptiveAvgPool2dFuncOptions({kPhotoRows, kPhotoColumns}))
+        .flatten(1);
+}
+
+torch::nn::Linear EmitterHeadImpl::photoCellsOutput() {
+    TORCH_CHECK(classifiesPhoto, "only a +cells emitter head classifies the photo");
+    return torch::nn::Linear(std::dynamic_pointer_cast<torch::nn::LinearImpl>(photoCells->ptr(3)));
+}
+
+torch::Tensor EmitterHeadImpl::photoCellLogits(const torch::Tensor& photo,
+                                               const torch::Tensor& photoLuminance) {
+    TORCH_CHECK(classifiesPhoto, "only a +cells emitter head classifies the photo");
+    return photoCells->forward(photoPlaces(photo, photoLuminance));
 }
 
 std::vector<torch::Tensor> addEmitters(const std::vector<torch::Tensor>& cubes,

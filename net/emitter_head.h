@@ -50,8 +50,9 @@ struct Emitters {
 constexpr double kPeakSharpness = 4.0;
 
 struct EmitterHeadImpl : torch::nn::Module {
-    // readsPhoto: the "+photo" design (NetConfig::emitterPhoto).
-    EmitterHeadImpl(int count, bool readsPhoto);
+    // readsPhoto: the "+photo" design (NetConfig::emitterPhoto); classifiesPhoto: "+cells"
+    // (NetConfig::emitterPhotoCells, with readsPhoto).
+    EmitterHeadImpl(int count, bool readsPhoto, bool classifiesPhoto = false);
     // level0: the completed level-0 cube [1, 4, R, R, R] (R a multiple of 16; read, not
     // trained through); photoLuminance: the photo's mean linear luminance, a scalar tensor
     // (the emitters' radiance is relative to it, so a brighter exposure brightens them too);
@@ -60,15 +61,29 @@ struct EmitterHeadImpl : torch::nn::Module {
     Emitters forward(const torch::Tensor& level0, const VolumeLayout& layout,
                      const torch::Tensor& photoLuminance, const torch::Tensor& photo = {});
 
+    // "+cells": the logits over level 0's 8^3 cells [1, cells] of where lamps are, from the
+    // photo alone (its encoder and photoCells), as forward adds them to every lamp's. The
+    // photo and its mean luminance as forward takes them.
+    torch::Tensor photoCellLogits(const torch::Tensor& photo, const torch::Tensor& photoLuminance);
+    // "+cells": the classifier's last layer (one logit per cell).
+    torch::nn::Linear photoCellsOutput();
+
     int count;
-    bool readsPhoto;
+    bool readsPhoto, classifiesPhoto;
     PreActConv down1{nullptr}, down2{nullptr}, mix{nullptr};
     // "+photo": four stride-2 convolutions over the photo, pooled to 3 x 4 places and mapped to
     // one feature vector that every cell sees.
     torch::nn::Sequential photoEncoder{nullptr};
     torch::nn::Linear photoToCells{nullptr};
+    // "+cells": the photo encoder's places -> 128 features (dropout 0.3) -> one logit per cell.
+    torch::nn::Sequential photoCells{nullptr};
+
     torch::nn::Conv3d where{nullptr};  // one position logit per emitter and 8^3 cell
     torch::nn::Linear what{nullptr};   // per emitter: radius, brightness, opacity, colour (3)
+
+private:
+    // The photo encoder's output for a photo [N, 3, H, W]: [N, channels x rows x columns].
+    torch::Tensor photoPlaces(const torch::Tensor& photo, const torch::Tensor& photoLuminance);
 };
 TORCH_MODULE(EmitterHead);
 

@@ -14,6 +14,7 @@
 #include "net/distributed.h"
 #include "net/exposure_filter.h"
 #include "net/highlight_gain.h"
+#include "net/lamp_cell_pretraining.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
 #include "net/mpi_render.h"
@@ -77,6 +78,8 @@ void TrainOptions::validate() const {
         throw InputError("--emitter-position-weight must be in [0, 1000]");
     if (!(emitterCellWeight >= 0 && emitterCellWeight <= 1000))
         throw InputError("--emitter-cell-weight must be in [0, 1000]");
+    if (pretrainLampCellEpochs < 0 || pretrainLampCellEpochs > 1000)
+        throw InputError("--pretrain-lamp-cells must be in [0, 1000] epochs");
     if (!(closureWeight >= 0 && closureWeight <= 100))
         throw InputError("--closure-weight must be in [0, 100]");
     if (!(directAdversarialWeight >= 0 && directAdversarialWeight <= 10))
@@ -169,6 +172,30 @@ void makeNetOptimizer(TrainingState& s, double lr) {
         head, std::make_unique<torch::optim::AdamOptions>(lr * kEmitterHeadLearningRateScale));
     s.optimizer = std::make_unique<torch::optim::Adam>(groups, torch::optim::AdamOptions(lr));
     s.learningRateScales = {1.0, kEmitterHeadLearningRateScale};
+}
+
+// `train --pretrain-lamp-cells`: the emitter head's photo classifier trained on the training
+// photos alone (net/lamp_cell_pretraining.h), scored on the held-out ones.
+void pretrainPhotoClassifier(const TrainOptions& o, TrainingState& s,
+                             const std::vector<std::string>& trainDirs,
+                             const std::vector<std::string>& heldOutDirs, std::ostream& progress) {
+    const auto load = [&](const std::vector<std::string>& dirs) {
+        std::vector<LampCellExample> examples;
+        for (const auto& dir : dirs) {
+            bool ok = false;
+            LampCellExample e = loadLampCellExample(dir, s.net->config, ok);
+            if (ok) examples.push_back(std::move(e));
+        }
+        return examples;
+    };
+    const std::vector<LampCellExample> training = load(trainDirs), heldOut = load(heldOutDirs);
+    if (training.empty())
+        throw InputError("--pretrain-lamp-cells needs scenes with lamps in scene.json; '" + o.data +
+                         "' has none");
+    LampCellPretraining options;
+    options.epochs = o.pretrainLampCellEpochs;
+    options.seed = o.seed;
+    pretrainLampCells(s.net->emitterHead, training, heldOut, options, progress);
 }
 
 void setLearningRate(torch::optim::Adam& optimizer, double lr,
@@ -451,13 +478,8 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
                          .to(device);
     if ((o.emitterPositionWeight > 0 || o.emitterCellWeight > 0) &&
         fs::is_regular_file(dir / dataset::kScene)) {
-        std::vector<float> centres;  // every emitting primitive: lamps and window panes
-        for (const synth::Primitive& prim :
-             synth::loadScene((dir / dataset::kScene).string()).primitives)
-            if (prim.isEmitter())
-                for (double v : {prim.centre.x(), prim.centre.y(), prim.centre.z()})
-                    centres.push_back(float(v));
-        if (!centres.empty()) p.lampCentres = torch::tensor(centres).reshape({-1, 3}).to(device);
+        const torch::Tensor centres = lampCentresOfScene((dir / dataset::kScene).string());
+        if (centres.defined()) p.lampCentres = centres.to(device);
     }
     if (fs::is_regular_file(dir / dataset::kOracle)) {
         p.oracle = loadOracleCubes((dir / dataset::kOracle).string(), p.inputs.layout, device);
@@ -493,6 +515,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     const bool direct = o.supervision == "direct";
 
     std::vector<std::string> trainDirs = listExamples(o.data), validationDirs;
+    const std::vector<std::string> everyDir = trainDirs;  // before the exposure filter
     if (o.maxClipped < 1.0) {
         const std::size_t all = trainDirs.size();
         trainDirs = withoutOverexposedScenes(trainDirs, o.maxClipped, progress);
@@ -521,6 +544,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
 
     TrainingState s;
     NetConfig netConfig = o.configOverride ? *o.configOverride : NetConfig::byName(o.config);
+    if (o.pretrainLampCellEpochs > 0 && !netConfig.emitterPhotoCells)
+        throw InputError(
+            "--pretrain-lamp-cells trains the photo classifier of a '+cells' emitter "
+            "head: use a --config such as wide+emitters+photo+cells");
     netConfig.pruneAlpha = o.pruneAlpha;
     netConfig.highlightGain = o.highlightGain;
     s.net = LighthouseNet(netConfig);
@@ -534,7 +561,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     makeNetOptimizer(s, o.learningRate);
     s.discriminatorOptimizer = std::make_unique<torch::optim::Adam>(
         s.discriminator->parameters(), torch::optim::AdamOptions(o.learningRate).betas({0.0, 0.9}));
-    if (loadCheckpoint(o, s)) {
+    const bool resumed = loadCheckpoint(o, s);
+    if (resumed) {
         progress << "train: resuming from " << o.checkpointPath() << " at iteration " << s.iteration
                  << "\n";
         s.log = readLog(o.out + ".csv", s.iteration);
@@ -577,6 +605,18 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                      << (s.net->config.colourAnchor ? "with" : "without") << " one\n";
     }
     const NetConfig& config = s.net->config;
+    if (!resumed && o.pretrainLampCellEpochs > 0) {
+        // Before the first step: a resumed run has the pretrained weights in its checkpoint.
+        // Every scene that is not held out: what --max-clipped leaves out is too bright an
+        // exposure for the envmap losses, and its photo says as much about its lamps.
+        std::vector<std::string> photoDirs;
+        for (const auto& dir : everyDir)
+            if (std::find(validationDirs.begin(), validationDirs.end(), dir) ==
+                validationDirs.end())
+                photoDirs.push_back(dir);
+        pretrainPhotoClassifier(o, s, photoDirs, validationDirs, progress);
+        copyWeights(s.average, s.net);
+    }
     if (comm) {
         // Every rank starts from rank 0's weights, at its iteration, on the same data.
         std::vector<torch::Tensor> weights = s.net->parameters();

@@ -126,6 +126,11 @@ struct TrainOptions {
     // lamps and windows (scene.json). Where the position loss teaches the mean of where lamps
     // may be, this keeps the likely places apart. 0: off.
     double emitterCellWeight = 0.0;
+    // Epochs of pretraining of a "+cells" emitter head's photo classifier on the photos alone
+    // (net/lamp_cell_pretraining.h) of every scene that is not held out (--max-clipped does not
+    // apply), before the first step of a fresh run; the log scores it on the held-out scenes
+    // against the training photos' own distribution of lamp cells. 0: none.
+    int pretrainLampCellEpochs = 0;
     // Weight of the closed-room prior (net/losses.h closureLoss): the transmittance each
     // envmap ray has left behind the (pruned) volume. The training rooms are closed; fog lets
     // rays leave through the walls, dark and slow to render. 0: off.

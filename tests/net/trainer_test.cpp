@@ -236,6 +236,34 @@ TEST_F(TrainerTest, TheEmitterCellWeightSteersAPhotoHead) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, PretrainingTheLampCellsComesBeforeAFreshRunOnly) {
+    // A "+cells" run pretrains the head's photo classifier on the 2 training photos (one of the
+    // 3 is held out) before its first step; resumed from its checkpoint it does not again. A
+    // configuration without the classifier is refused.
+    TrainOptions o = options("lighthouse_trainer_lamp_cells");
+    NetConfig config = test::tinyHdrConfig();
+    config.emitters = 3;
+    config.emitterPhoto = config.emitterPhotoCells = true;
+    o.configOverride = config;
+    o.iterations = 1;
+    o.pretrainLampCellEpochs = 2;
+    std::ostringstream first, second;
+    train(o, first);
+    EXPECT_NE(first.str().find("lamp cells from photos alone, 2 photos"), std::string::npos)
+        << first.str();
+    EXPECT_NE(first.str().find("lamp cells, epoch 2/2"), std::string::npos) << first.str();
+    o.iterations = 2;
+    train(o, second);
+    EXPECT_NE(second.str().find("resuming"), std::string::npos) << second.str();
+    EXPECT_EQ(second.str().find("lamp cells from photos alone"), std::string::npos) << second.str();
+    removeOutputs(o);
+    TrainOptions plain = options("lighthouse_trainer_lamp_cells_plain");
+    plain.pretrainLampCellEpochs = 2;
+    EXPECT_THROW(train(plain, second), InputError);
+    plain.pretrainLampCellEpochs = -1;
+    EXPECT_THROW(plain.validate(), InputError);
+}
+
 TEST_F(TrainerTest, TheViewHdrWeightSteersTraining) {
     // The tiny set's examples carry tgt.exr: with the HDR view loss on, the MPI's gradients
     // differ, so do the weights, and the log names the term; a negative weight is refused.
