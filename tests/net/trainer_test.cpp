@@ -17,6 +17,8 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace lh::net {
 namespace {
@@ -190,50 +192,47 @@ TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
-TEST_F(TrainerTest, TheEmitterPositionWeightSteersTheHead) {
-    // The tiny set's rooms have lamps in scene.json: with the lamp-position loss on, the head's
-    // gradients differ, so do the weights, and the log names the term.
-    std::ostringstream log;
-    EXPECT_GT(weightChangeOf(
-                  "lighthouse_trainer_emitter_position", 0.0, 10.0,
-                  [](TrainOptions& o, double w) {
-                      NetConfig config = test::tinyHdrConfig();
-                      config.emitters = 3;
-                      o.configOverride = config;
-                      o.emitterPositionWeight = w;
-                  },
-                  log),
-              1e-6)
-        << "the lamp-position weight changed nothing";
-    EXPECT_NE(log.str().find("emitter head also 10 x squared distance"), std::string::npos)
-        << log.str();
-    TrainOptions negative = options("lighthouse_trainer_emitter_position_negative");
-    negative.emitterPositionWeight = -1.0;
-    EXPECT_THROW(negative.validate(), InputError);
-}
-
-TEST_F(TrainerTest, TheEmitterCellWeightSteersAPhotoHead) {
-    // With the lamp-cell loss on, a "+photo" head's gradients differ, so do the weights, and the
-    // log names the term and reports its value; a negative weight is refused.
-    std::ostringstream log;
-    EXPECT_GT(weightChangeOf(
-                  "lighthouse_trainer_emitter_cells", 0.0, 10.0,
-                  [](TrainOptions& o, double w) {
-                      NetConfig config = test::tinyHdrConfig();
-                      config.emitters = 3;
-                      config.emitterPhoto = true;
-                      o.configOverride = config;
-                      o.emitterCellWeight = w;
-                  },
-                  log),
-              1e-6)
-        << "the lamp-cell weight changed nothing";
-    EXPECT_NE(log.str().find("emitter head also 10 x divergence of its cells"), std::string::npos)
-        << log.str();
-    EXPECT_NE(log.str().find(", emitter cells "), std::string::npos) << log.str();
-    TrainOptions negative = options("lighthouse_trainer_emitter_cells_negative");
-    negative.emitterCellWeight = -1.0;
-    EXPECT_THROW(negative.validate(), InputError);
+TEST_F(TrainerTest, TheEmitterHeadsLossWeightsSteerTheHead) {
+    // The tiny set's rooms have lamps in scene.json: with the lamp-position loss (a plain head)
+    // or the lamp-cell loss (a "+photo" head) on, the head's gradients differ, so do the
+    // weights, and the log names the term (the cell loss also its value); a negative weight is
+    // refused.
+    struct HeadLoss {
+        const char* name;
+        bool photoHead;
+        double TrainOptions::*weight;
+        std::vector<std::string> logged;
+    };
+    const HeadLoss losses[] = {
+        {"position",
+         false,
+         &TrainOptions::emitterPositionWeight,
+         {"emitter head also 10 x squared distance"}},
+        {"cells",
+         true,
+         &TrainOptions::emitterCellWeight,
+         {"emitter head also 10 x divergence of its cells", ", emitter cells "}}};
+    for (const HeadLoss& loss : losses) {
+        std::ostringstream log;
+        const std::string name = std::string("lighthouse_trainer_emitter_") + loss.name;
+        EXPECT_GT(weightChangeOf(
+                      name, 0.0, 10.0,
+                      [&](TrainOptions& o, double w) {
+                          NetConfig config = test::tinyHdrConfig();
+                          config.emitters = 3;
+                          config.emitterPhoto = loss.photoHead;
+                          o.configOverride = config;
+                          o.*loss.weight = w;
+                      },
+                      log),
+                  1e-6)
+            << "the " << loss.name << " weight changed nothing";
+        for (const std::string& text : loss.logged)
+            EXPECT_NE(log.str().find(text), std::string::npos) << log.str();
+        TrainOptions negative = options(name + "_negative");
+        negative.*loss.weight = -1.0;
+        EXPECT_THROW(negative.validate(), InputError) << loss.name;
+    }
 }
 
 TEST_F(TrainerTest, PretrainingTheLampCellsComesBeforeAFreshRunOnly) {
