@@ -24,11 +24,6 @@ namespace {
 constexpr int kCellsPerSide = 8;        // level 0's cells, as the emitter head reads them
 constexpr double kUniformShare = 1e-3;  // mixed into the starting distribution: no cell impossible
 
-// Rec. 709 luminance of a linear [1, 3, H, W] image, averaged: a scalar tensor.
-torch::Tensor meanLuminance(const torch::Tensor& image) {
-    return (0.2126 * image[0][0] + 0.7152 * image[0][1] + 0.0722 * image[0][2]).mean();
-}
-
 // KL(target || softmax(logits)) per row, nats: [N].
 torch::Tensor divergence(const torch::Tensor& logits, const torch::Tensor& target) {
     return (torch::xlogy(target, target) - target * torch::log_softmax(logits, 1)).sum(1);
@@ -94,7 +89,8 @@ LampCellExample loadLampCellExample(const std::string& directory, const NetConfi
     if (!cameras.far) throw FileError((dir / dataset::kCameras).string() + ": no far depth");
     e.photo = imageToTensor(resizeImage(readImage((dir / dataset::viewPng("ref")).string()),
                                         config.width, config.height));
-    e.photoLuminance = meanLuminance(e.photo).clamp_min(1e-3);
+    // As the pipeline gives it to the head (LighthouseNetImpl::run).
+    e.photoLuminance = luminanceTensor(e.photo).mean().clamp_min(1e-3);
     e.cells = lampCellTarget(lamps, *cameras.far, kCellsPerSide);
     e.mirroredCells = lampCellTarget(lamps, *cameras.far, kCellsPerSide, /*mirrored=*/true);
     ok = true;
