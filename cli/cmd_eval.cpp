@@ -21,7 +21,9 @@ void addEvalCommand(CLI::App& app, const int& threads) {
         ->required();
     cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
     cmd->add_option("-o,--output", o->out,
-                    "Output directory: table.md, metrics.csv, contact_sheet.png")
+                    "Output directory: table.md, metrics.csv, contact_sheet.png, and for a model "
+                    "with an emitter head lamps.csv (each lamp's angle to the nearest true lamp or "
+                    "window, seen from each envmap's point)")
         ->capture_default_str();
     cmd->add_option("--max-scenes", o->maxScenes, "Evaluate only the first N scenes (0: all)")
         ->capture_default_str();

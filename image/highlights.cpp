@@ -92,4 +92,21 @@ HighlightMatch matchHighlights(const ImageRGB& pred, const ImageRGB& gt, double 
             coveredShare(predBright, dilateOnSphere(gtBright, directions, w, h, radius), w, h)};
 }
 
+double degreesToNearestHighlight(const ImageRGB& gt, const Vec3d& direction) {
+    if (gt.width <= 0 || gt.height <= 0)
+        throw InputError("highlights: the ground-truth envmap is empty");
+    const double length = direction.length();
+    if (!(length > 0.0) || !std::isfinite(length))
+        throw InputError("highlights: the direction must be finite and non-zero");
+    const Vec3d unit = direction / length;
+    double bestCosine = -2.0;  // below any cosine: no highlight seen yet
+    for (int r = 0; r < gt.height; ++r)
+        for (int c = 0; c < gt.width; ++c)
+            if (isLampOrWindow(gt.at(c, r)))
+                bestCosine =
+                    std::max(bestCosine, unit.dot(envmapPixelDirection(r, c, gt.width, gt.height)));
+    if (bestCosine < -1.5) return kNaN;
+    return std::acos(std::clamp(bestCosine, -1.0, 1.0)) * 180.0 / M_PI;
+}
+
 }  // namespace lh

@@ -13,6 +13,7 @@
 // A large window weighs more than a small lamp, as it does on a mirror ball.
 #pragma once
 
+#include "core/vec.h"
 #include "image/image.h"
 
 namespace lh {
@@ -32,5 +33,11 @@ struct HighlightMatch {
 // (0, 180] degrees.
 HighlightMatch matchHighlights(const ImageRGB& pred, const ImageRGB& gt,
                                double radiusDegrees = kHighlightRadiusDegrees);
+
+// How far a direction points from the truth's nearest highlight pixel (a lamp or window, as
+// above), in degrees: 0 when it points into one. It scores where a predictor placed a lamp,
+// seen from the envmap's point, whether or not the lamp is bright enough to show. NaN when
+// `gt` has no highlight pixel. Throws InputError for an empty envmap or a zero direction.
+double degreesToNearestHighlight(const ImageRGB& gt, const Vec3d& direction);
 
 }  // namespace lh

@@ -6,6 +6,7 @@
 #include "core/dataset_files.h"
 #include "core/errors.h"
 #include "image/contact_sheet.h"
+#include "image/highlights.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "image/resample.h"
@@ -162,6 +163,14 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
                 addScores(report.methods[m], values);
                 csv << evalCsvRow(example, e, report.methods[m].name, values, o.shard.active);
             }
+            for (size_t k = 0; k < prediction.emitters.size(); ++k) {
+                // A lamp on the envmap's point has no direction to score.
+                const Vec3d toLamp = prediction.emitters[k].position - position;
+                report.lamps.push_back({example, e, k, prediction.emitters[k].alpha,
+                                        toLamp.length() > 1e-9
+                                            ? degreesToNearestHighlight(gt, toLamp)
+                                            : std::nan("")});
+            }
             for (size_t k = 0; k < report.headroom.size(); ++k) {
                 const ImageRGB spliced =
                     spliceTruth(predictions[0], gt, kTruthParts[k], ex.masks[e]);
@@ -189,6 +198,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     report.markdown +=
         evalPredictionNotes(predictor.highlightGain(), predictor.highlightKnee(), o.shell);
     if (o.headroom) report.markdown += headroomTableMarkdown(report.methods[0], report.headroom);
+    if (!o.shard.active) report.markdown += lampPlacementMarkdown(report.lamps);
     if (o.shard.active) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the
         // record that the merge reads.
@@ -232,6 +242,8 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     }
     writeTextFile((fs::path(o.out) / "table.md").string(), report.markdown);
     writeTextFile((fs::path(o.out) / "metrics.csv").string(), csv.str());
+    if (!report.lamps.empty())
+        writeTextFile((fs::path(o.out) / "lamps.csv").string(), lampPlacementCsv(report.lamps));
     writePng(contactSheet(sheetRows, kEvalSheetTileHeight),
              (fs::path(o.out) / "contact_sheet.png").string());
     progress << "eval: columns of contact_sheet.png: ground truth | ours | MPI only | global envmap"

@@ -17,6 +17,7 @@
 #pragma once
 
 #include "core/shard.h"
+#include "net/lamp_placement.h"
 
 #include <iosfwd>
 #include <string>
@@ -58,7 +59,10 @@ struct MethodScores {
 struct EvalReport {
     std::vector<MethodScores> methods;
     std::vector<MethodScores> headroom;  // with options.headroom: one per TruthPart
-    std::string markdown;                // the table
+    // Models with an emitter head: each lamp seen from each envmap's point (lamps.csv, and a
+    // line under the table; not in a shard's files).
+    std::vector<LampPlacement> lamps;
+    std::string markdown;  // the table
 };
 
 EvalReport evaluate(const EvalOptions& options, std::ostream& progress);

@@ -110,6 +110,22 @@ TEST(Highlights, CompareEnvmapsReportsThem) {
     EXPECT_STREQ(kEnvmapMetricColumnNames[10], "highlight_recall");
 }
 
+TEST(Highlights, ALampsDirectionIsScoredByItsAngleToTheNearestTrueHighlight) {
+    // Lamps of radius 6 deg at +x (azimuth 90) and straight up (-y).
+    const ImageRGB truth = roomWithLamps({horizon(90), Vec3d(0, -1, 0)});
+    // Into a lamp: the nearest pixel centre is within half a pixel's diagonal (pixels of 1.5
+    // deg, so 1.06 deg).
+    EXPECT_LT(degreesToNearestHighlight(truth, horizon(90)), 1.1);
+    EXPECT_LT(degreesToNearestHighlight(truth, Vec3d(0, -3, 0)), 1.1);  // any length
+    // 30 deg from the +x lamp's centre: its edge is 24 deg away, give or take a pixel (1.5 deg).
+    EXPECT_NEAR(degreesToNearestHighlight(truth, horizon(120)), 24.0, 1.5);
+    // Straight down: the lamp overhead is 174 deg away, the one at +x 84.
+    EXPECT_NEAR(degreesToNearestHighlight(truth, Vec3d(0, 1, 0)), 84.0, 1.5);
+    EXPECT_TRUE(std::isnan(degreesToNearestHighlight(roomWithLamps({}), horizon(0))));
+    EXPECT_THROW(degreesToNearestHighlight(truth, Vec3d(0, 0, 0)), InputError);
+    EXPECT_THROW(degreesToNearestHighlight(ImageRGB(0, 0), horizon(0)), InputError);
+}
+
 TEST(Highlights, RefusesDifferentSizesAndBadRadii) {
     EXPECT_THROW(matchHighlights(ImageRGB(8, 4), ImageRGB(16, 8)), InputError);
     EXPECT_THROW(matchHighlights(ImageRGB(8, 4), ImageRGB(8, 4), 0.0), InputError);

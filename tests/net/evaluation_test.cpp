@@ -1,7 +1,7 @@
 // `lighthouse eval`'s headroom rows on a tiny data set and an untrained model: each row is
 // ours with one part of the truth put in, so the part put in scores perfectly and the rest
 // scores as ours. And --shell, which changes ours and nothing else; and the notes that say how
-// ours was predicted.
+// ours was predicted; and where an emitter model's lamps are, seen from each envmap's point.
 #include "net/evaluation.h"
 #include "core/errors.h"
 #include "net/eval_table.h"
@@ -41,6 +41,8 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     const EvalReport report = evaluate(o, progress);
 
     ASSERT_EQ(report.headroom.size(), 7u);
+    EXPECT_TRUE(report.lamps.empty()) << "a model without an emitter head has no lamps";
+    EXPECT_FALSE(fs::exists(fs::path(out) / "lamps.csv"));
     const MethodScores& ours = report.methods[0];
     const MethodScores &observed = report.headroom[0], &unobserved = report.headroom[1];
     ASSERT_EQ(observed.psnrAll.size(), ours.psnrAll.size());
@@ -98,6 +100,45 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
 
     o.shard = Shard{0, 2, true};
     EXPECT_THROW(evaluate(o, progress), InputError) << "headroom rows are not sharded";
+    fs::remove_all(data);
+    fs::remove(model);
+    fs::remove_all(out);
+}
+
+TEST(Evaluation, AnEmitterModelsLampsAreScoredFromEveryEnvmapsPoint) {
+    const std::string data = test::uniqueTempPath("lighthouse_eval_lamps_data");
+    const std::string model = test::uniqueTempPath("lighthouse_eval_lamps.pt");
+    const std::string out = test::uniqueTempPath("lighthouse_eval_lamps_out");
+    test::writeTinyTrainingSet(data);
+    NetConfig config = test::tinyHdrConfig();
+    config.emitters = 2;
+    torch::manual_seed(8);
+    LighthouseNet untrained(config);
+    saveModel(untrained, model);
+
+    EvalOptions o;
+    o.data = data;
+    o.model = model;
+    o.out = out;
+    o.oracle = false;
+    o.threads = 1;
+    std::ostringstream progress;
+    const EvalReport report = evaluate(o, progress);
+    const std::size_t envmaps = report.methods[0].psnrAll.size();
+    ASSERT_EQ(report.lamps.size(), 2 * envmaps);  // each lamp from each envmap's point
+    int scored = 0;
+    for (const LampPlacement& lamp : report.lamps) {
+        EXPECT_LT(lamp.lamp, 2u);
+        EXPECT_GT(lamp.alpha, 0.0);
+        if (std::isnan(lamp.degrees)) continue;
+        ++scored;
+        EXPECT_GE(lamp.degrees, 0.0);
+        EXPECT_LE(lamp.degrees, 180.0);
+    }
+    EXPECT_GT(scored, 0) << "no envmap with a lamp or window to place against";
+    EXPECT_NE(report.markdown.find("Lamps of the emitter head (lamps.csv)"), std::string::npos)
+        << report.markdown;
+    EXPECT_TRUE(fs::is_regular_file(fs::path(out) / "lamps.csv"));
     fs::remove_all(data);
     fs::remove(model);
     fs::remove_all(out);
