@@ -35,8 +35,9 @@ void addTrainCommand(CLI::App& app, const int& threads) {
            "gives the completion networks the observed colour at each height of the room, and "
            "'+emitters' (wide+emitters) adds a head that places 3 compact lamps in the volume, "
            "'+photo' with it (wide+emitters+photo) a head that also reads the photo and puts "
-           "each lamp at the peak of its distribution over places, and '+cells' with both a "
-           "classifier of where lamps are from the photo alone (see --pretrain-lamp-cells)")
+           "each lamp at the peak of its distribution over places, '+cells' with both a "
+           "classifier of where lamps are from the photo alone (see --pretrain-lamp-cells), and "
+           "'+apart' with '+photo' lamps that each take a different peak")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->out,
                     "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")

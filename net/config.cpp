@@ -76,13 +76,14 @@ NetConfig NetConfig::paper() {
 NetConfig NetConfig::byName(const std::string& name) {
     // The base name, then any of the suffixes.
     std::string base = name;
-    bool profile = false, emitters = false, photo = false, cells = false;
+    bool profile = false, emitters = false, photo = false, cells = false, apart = false;
     for (bool found = true; found;) {
         found = false;
         for (auto [suffix, flag] : {std::pair<std::string, bool*>{"+profile", &profile},
                                     std::pair<std::string, bool*>{"+emitters", &emitters},
                                     std::pair<std::string, bool*>{"+photo", &photo},
-                                    std::pair<std::string, bool*>{"+cells", &cells}}) {
+                                    std::pair<std::string, bool*>{"+cells", &cells},
+                                    std::pair<std::string, bool*>{"+apart", &apart}}) {
             if (!*flag && base.size() > suffix.size() &&
                 base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0) {
                 base.resize(base.size() - suffix.size());
@@ -102,13 +103,14 @@ NetConfig NetConfig::byName(const std::string& name) {
     else
         throw InputError("unknown configuration '" + name +
                          "' (expected 'standard', 'wide', 'small' or 'paper', optionally with "
-                         "'+profile', '+emitters', '+emitters+photo' and '+emitters+photo+cells')");
+                         "'+profile', '+emitters', '+emitters+photo', then '+cells' and '+apart')");
     c.name = name;
     c.heightProfile = profile;
     c.emitters = emitters ? kSuffixEmitters : 0;
     c.emitterPhoto = photo;
     c.emitterPhotoCells = cells;
-    c.validate();  // "+photo" without "+emitters", "+cells" without "+photo"
+    c.emitterApart = apart;
+    c.validate();  // "+photo" without "+emitters", "+cells" or "+apart" without "+photo"
     return c;
 }
 
@@ -143,6 +145,8 @@ void NetConfig::validate() const {
         throw InputError("'+photo' is the emitter head's: it needs '+emitters'");
     if (emitterPhotoCells && !emitterPhoto)
         throw InputError("'+cells' classifies the photo head's input: it needs '+emitters+photo'");
+    if (emitterApart && !emitterPhoto)
+        throw InputError("'+apart' places the photo head's lamps: it needs '+emitters+photo'");
     if (completionScale != 1 && completionScale != 2)
         throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
@@ -171,17 +175,19 @@ std::string NetConfig::toJson() const {
                               {"emitters", emitters},
                               {"emitter_photo", emitterPhoto},
                               {"emitter_photo_cells", emitterPhotoCells},
+                              {"emitter_apart", emitterApart},
                               {"prune_alpha", pruneAlpha},
                               {"highlight_gain", highlightGain}};
     return j.dump();
 }
 
 bool NetConfig::sameParameters(const NetConfig& other) const {
-    // Everything but the name, the colour anchor, the pruning threshold and the highlight gain
-    // shapes the parameters.
+    // Everything but the name, the colour anchor, the pruning threshold, the highlight gain and
+    // where the lamps are placed shapes the parameters.
     NetConfig a = *this, b = other;
     a.name = b.name;
     a.colourAnchor = b.colourAnchor;
+    a.emitterApart = b.emitterApart;
     a.pruneAlpha = b.pruneAlpha;
     a.highlightGain = b.highlightGain;
     return a.toJson() == b.toJson();
@@ -211,6 +217,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.emitters = j.value("emitters", 0);
         c.emitterPhoto = j.value("emitter_photo", false);
         c.emitterPhotoCells = j.value("emitter_photo_cells", false);
+        c.emitterApart = j.value("emitter_apart", false);
         c.pruneAlpha = j.value("prune_alpha", 0.0);
         c.highlightGain = j.value("highlight_gain", 1.0);
     } catch (const nlohmann::json::exception& e) {

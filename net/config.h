@@ -69,6 +69,11 @@ struct NetConfig {
     // before the fine-tuning (net/lamp_cell_pretraining.h). Named by a "+cells" suffix, with
     // "+emitters+photo".
     bool emitterPhotoCells = false;
+    // The photo head's lamps take different places: each in turn at the peak of the cells not
+    // next to an earlier lamp's (net/emitter_head.h). Without it, lamps that share the
+    // classifier's logits all sit at its one peak. Named by a "+apart" suffix, with
+    // "+emitters+photo".
+    bool emitterApart = false;
     // Voxel alpha below which the model's volumes are left empty: the threshold it was trained
     // under (train --prune-alpha), so predict prunes there by default and the walls it learnt
     // to make opaque survive. 0: trained unpruned; predict uses its own default.
@@ -84,8 +89,8 @@ struct NetConfig {
     static NetConfig wide();
     // "standard", "wide", "small" or "paper", each optionally followed by "+profile"
     // (heightProfile on), "+emitters" (kSuffixEmitters emitters), "+photo" (emitterPhoto on,
-    // with "+emitters") and "+cells" (emitterPhotoCells on, with "+photo"), in any order; throws
-    // InputError otherwise.
+    // with "+emitters"), "+cells" (emitterPhotoCells on, with "+photo") and "+apart"
+    // (emitterApart on, with "+photo"), in any order; throws InputError otherwise.
     static NetConfig byName(const std::string& name);
 
     // Throws InputError naming the bad size.

@@ -3,6 +3,8 @@
 #include "net/hdr.h"
 #include "net/mpi_resample.h"
 
+#include <limits>
+
 namespace lh::net {
 
 namespace F = torch::nn::functional;
@@ -34,9 +36,10 @@ torch::Tensor centresLike(const VolumeLayout& layout, int level, const torch::Te
 
 }  // namespace
 
-EmitterHeadImpl::EmitterHeadImpl(int k, bool photo, bool classifies)
-    : count(k), readsPhoto(photo), classifiesPhoto(classifies) {
+EmitterHeadImpl::EmitterHeadImpl(int k, bool photo, bool classifies, bool apart)
+    : count(k), readsPhoto(photo), classifiesPhoto(classifies), placesApart(apart) {
     TORCH_CHECK(readsPhoto || !classifiesPhoto, "a photo classifier needs the photo encoder");
+    TORCH_CHECK(readsPhoto || !placesApart, "lamps placed apart need the photo head's peaks");
     down1 = register_module("down1", PreActConv(kInputChannels, 16, 2));
     if (readsPhoto) {
         namespace nn = torch::nn;
@@ -105,7 +108,8 @@ Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayou
     if (classifiesPhoto) e.cellLogits = e.cellLogits + photoCells->forward(places);
     e.cellCentres = cellCentres;
     const auto weights =
-        torch::softmax(readsPhoto ? kPeakSharpness * e.cellLogits : e.cellLogits, 1);
+        placesApart ? apartPeakWeights(kPeakSharpness * e.cellLogits, kCells)
+                    : torch::softmax(readsPhoto ? kPeakSharpness * e.cellLogits : e.cellLogits, 1);
     e.position = torch::matmul(weights, cellCentres);
 
     const auto out = what(features.mean({2, 3, 4})).reshape({count, 6});
@@ -141,6 +145,26 @@ torch::Tensor EmitterHeadImpl::photoCellLogits(const torch::Tensor& photo,
                                                const torch::Tensor& photoLuminance) {
     TORCH_CHECK(classifiesPhoto, "only a +cells emitter head classifies the photo");
     return photoCells->forward(photoPlaces(photo, photoLuminance));
+}
+
+torch::Tensor apartPeakWeights(const torch::Tensor& sharpenedLogits, int64_t side) {
+    const auto cell = torch::arange(
+        side * side * side, torch::TensorOptions(torch::kLong).device(sharpenedLogits.device()));
+    const auto z = cell.div(side * side, "floor"), y = cell.div(side, "floor").remainder(side),
+               x = cell.remainder(side);
+    auto open = torch::ones_like(cell, torch::kBool);
+    std::vector<torch::Tensor> rows;
+    for (int64_t k = 0; k < sharpenedLogits.size(0); ++k) {
+        if (!open.any().item<bool>()) open.fill_(true);
+        const auto logits = sharpenedLogits[k].masked_fill(open.logical_not(),
+                                                           -std::numeric_limits<float>::infinity());
+        rows.push_back(torch::softmax(logits, 0));
+        const int64_t peak = logits.argmax().item<int64_t>();
+        const auto near =
+            (z - z[peak]).abs().le(1) & (y - y[peak]).abs().le(1) & (x - x[peak]).abs().le(1);
+        open = open & near.logical_not();
+    }
+    return torch::stack(rows);
 }
 
 std::vector<torch::Tensor> addEmitters(const std::vector<torch::Tensor>& cubes,

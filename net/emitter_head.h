@@ -17,6 +17,13 @@
 // emitterCellLoss). A squared distance would teach the mean of where lamps may be, which is
 // nowhere in particular; a distribution keeps the places apart, and each lamp sits at the peak
 // of its own (a sharpened soft argmax), not at its mean.
+//
+// Where the lamps share one distribution (a "+cells" classifier's logits dominate every
+// lamp's), all of them find its one peak, and one place cannot carry a room's unseen light,
+// which comes from several lamps and windows. A "+apart" head (NetConfig::emitterApart) places
+// them in turn: each at the sharpened peak of the cells that are not next to (within one cell,
+// diagonals included) an earlier lamp's peak. The choice of cells is not differentiable; the
+// position within the chosen ones is, as before.
 #pragma once
 
 #include "net/torch_pch.h"
@@ -51,8 +58,10 @@ constexpr double kPeakSharpness = 4.0;
 
 struct EmitterHeadImpl : torch::nn::Module {
     // readsPhoto: the "+photo" design (NetConfig::emitterPhoto); classifiesPhoto: "+cells"
-    // (NetConfig::emitterPhotoCells, with readsPhoto).
-    EmitterHeadImpl(int count, bool readsPhoto, bool classifiesPhoto = false);
+    // (NetConfig::emitterPhotoCells, with readsPhoto); placesApart: "+apart"
+    // (NetConfig::emitterApart, with readsPhoto).
+    EmitterHeadImpl(int count, bool readsPhoto, bool classifiesPhoto = false,
+                    bool placesApart = false);
     // level0: the completed level-0 cube [1, 4, R, R, R] (R a multiple of 16; read, not
     // trained through); photoLuminance: the photo's mean linear luminance, a scalar tensor
     // (the emitters' radiance is relative to it, so a brighter exposure brightens them too);
@@ -69,7 +78,7 @@ struct EmitterHeadImpl : torch::nn::Module {
     torch::nn::Linear photoCellsOutput();
 
     int count;
-    bool readsPhoto, classifiesPhoto;
+    bool readsPhoto, classifiesPhoto, placesApart;
     PreActConv down1{nullptr}, down2{nullptr}, mix{nullptr};
     // "+photo": four stride-2 convolutions over the photo, pooled to 3 x 4 places and mapped to
     // one feature vector that every cell sees.
@@ -86,6 +95,12 @@ private:
     torch::Tensor photoPlaces(const torch::Tensor& photo, const torch::Tensor& photoLuminance);
 };
 TORCH_MODULE(EmitterHead);
+
+// "+apart": the weights over a cube of cells per side^3 cells (z, y, x order) that place each
+// lamp, from its sharpened logits [K, cells]: lamp k's softmax over the cells not within one
+// cell of an earlier lamp's peak, 0 on the others. Where every cell is taken (more lamps than
+// fit), the next lamp may use them all again.
+torch::Tensor apartPeakWeights(const torch::Tensor& sharpenedLogits, int64_t side);
 
 // The cubes [1, 4, R, R, R] (linear RGB, voxel alpha) of `layout` with the emitters added: in
 // every voxel the optical depths add and the colours mix in proportion to them, as two

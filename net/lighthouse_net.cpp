@@ -44,7 +44,9 @@ LighthouseNetImpl::LighthouseNetImpl(const NetConfig& c) : config(c) {
             "completion" + std::to_string(k),
             UNet3d((k == 0 ? 4 : 8) + positionChannels + profileChannels, 5, c.baseWidth)));
     if (c.emitters > 0)
-        emitterHead = register_module("emitter_head", EmitterHead(c.emitters, c.emitterPhoto, c.emitterPhotoCells));
+        emitterHead = register_module(
+            "emitter_head",
+            EmitterHead(c.emitters, c.emitterPhoto, c.emitterPhotoCells, c.emitterApart));
 }
 
 torch::Tensor LighthouseNetImpl::logColourAnchor(const torch::Tensor& refLinear) const {
