@@ -14,7 +14,7 @@ namespace {
 // The head reads level 0 at 32^3: radiance feature (3), alpha (1), voxel position (3).
 constexpr int kInputChannels = 7;
 constexpr int64_t kReadResolution = 32;
-constexpr int64_t kCells = 8;          // per side: two stride-2 stages below kReadResolution
+constexpr int64_t kCells = kEmitterCellsPerSide;
 constexpr double kPositionUnit = 4.0;  // metres, as the completion networks see positions
 // A new head starts dim (opacity sigmoid(-4) = 0.018), so that a model fine-tuned with one
 // begins by predicting what it predicted without, and lamp-bright: e^3 = 20 times the photo's
@@ -106,7 +106,6 @@ Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayou
             .t();                                         // [cells, 3]
     e.cellLogits = where(features).reshape({count, -1});  // [K, cells]
     if (classifiesPhoto) e.cellLogits = e.cellLogits + photoCells->forward(places);
-    e.cellCentres = cellCentres;
     const auto weights =
         placesApart ? apartPeakWeights(kPeakSharpness * e.cellLogits, kCells)
                     : torch::softmax(readsPhoto ? kPeakSharpness * e.cellLogits : e.cellLogits, 1);

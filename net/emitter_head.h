@@ -47,10 +47,14 @@ struct Emitters {
     torch::Tensor radius;    // [K] metres: the Gaussian's standard deviation
     torch::Tensor alpha;     // [K] voxel opacity at the centre, in (0, 1)
     torch::Tensor radiance;  // [K, 3] linear RGB
-    // Each lamp's position logits over level 0's 8^3 cells [K, cells], and the cells' centres
-    // [cells, 3] (metres): what the cell loss reads.
-    torch::Tensor cellLogits, cellCentres;
+    // Each lamp's position logits over level 0's 8^3 cells [K, cells] (z-major, like the
+    // cubes): what the cell loss reads.
+    torch::Tensor cellLogits;
 };
+
+// Level 0's cells per side, over which the head places its lamps: two stride-2 stages below
+// the 32^3 at which it reads level 0.
+constexpr int64_t kEmitterCellsPerSide = 8;
 
 // A "+photo" head places each lamp at softmax(kPeakSharpness x logits) over the cells: near the
 // peak of its distribution, still differentiable.

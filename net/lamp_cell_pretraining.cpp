@@ -5,6 +5,7 @@
 #include "image/image_io.h"
 #include "image/resample.h"
 #include "net/config.h"
+#include "net/losses.h"
 #include "net/tensor_image.h"
 #include "synth/scene_json.h"
 
@@ -21,12 +22,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kCellsPerSide = 8;        // level 0's cells, as the emitter head reads them
 constexpr double kUniformShare = 1e-3;  // mixed into the starting distribution: no cell impossible
 
 // KL(target || softmax(logits)) per row, nats: [N].
 torch::Tensor divergence(const torch::Tensor& logits, const torch::Tensor& target) {
-    return (torch::xlogy(target, target) - target * torch::log_softmax(logits, 1)).sum(1);
+    return cellDivergence(target, torch::log_softmax(logits, 1));
 }
 
 LampCellScores scoreLogits(const std::function<torch::Tensor(const LampCellExample&)>& logitsOf,
@@ -91,8 +91,8 @@ LampCellExample loadLampCellExample(const std::string& directory, const NetConfi
                                         config.width, config.height));
     // As the pipeline gives it to the head (LighthouseNetImpl::run).
     e.photoLuminance = luminanceTensor(e.photo).mean().clamp_min(1e-3);
-    e.cells = lampCellTarget(lamps, *cameras.far, kCellsPerSide);
-    e.mirroredCells = lampCellTarget(lamps, *cameras.far, kCellsPerSide, /*mirrored=*/true);
+    e.cells = lampCellTarget(lamps, *cameras.far, kEmitterCellsPerSide);
+    e.mirroredCells = lampCellTarget(lamps, *cameras.far, kEmitterCellsPerSide, /*mirrored=*/true);
     ok = true;
     return e;
 }

@@ -231,21 +231,17 @@ torch::Tensor emitterPositionLoss(const torch::Tensor& lamps, const torch::Tenso
     return std::get<0>(distance2.min(1)).mean();
 }
 
-torch::Tensor emitterCellLoss(const torch::Tensor& cellLogits, const torch::Tensor& cellCentres,
-                              const torch::Tensor& trueLamps) {
-    const auto distance2 =
-        (trueLamps.unsqueeze(1) - cellCentres.unsqueeze(0)).pow(2).sum(-1);  // [M, cells]
-    const auto nearest = std::get<1>(distance2.min(1));                      // [M]
-    const auto truth =
-        torch::zeros({cellCentres.size(0)}, cellLogits.options())
-            .index_add_(0, nearest, torch::ones({trueLamps.size(0)}, cellLogits.options()))
-            .div_(double(trueLamps.size(0)));
-    const auto logHead =
+torch::Tensor cellDivergence(const torch::Tensor& target, const torch::Tensor& logProbability) {
+    // xlogy: 0 ln 0 = 0, so cells without a lamp add nothing whatever p is there.
+    return (torch::xlogy(target, target) - target * logProbability).sum(1);
+}
+
+torch::Tensor emitterCellLoss(const torch::Tensor& cellLogits, const torch::Tensor& target) {
+    // ln of the mixture of the lamps' distributions, 1/K sum_k softmax_k, per cell.
+    const auto logMixture =
         torch::log_softmax(cellLogits, 1).logsumexp(0) - std::log(double(cellLogits.size(0)));
-    const auto present = truth > 0;
-    return (truth.masked_select(present) *
-            (truth.masked_select(present).log() - logHead.masked_select(present)))
-        .sum();
+    return cellDivergence(target.to(cellLogits.options()).unsqueeze(0), logMixture.unsqueeze(0))
+        .squeeze(0);
 }
 
 torch::Tensor binaryAlphaLoss(const std::vector<torch::Tensor>& cubes) {

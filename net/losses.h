@@ -107,15 +107,17 @@ torch::Tensor binaryAlphaLoss(const std::vector<torch::Tensor>& cubes);
 // [M, 3] (their centres). 0 when every lamp sits on a true one.
 torch::Tensor emitterPositionLoss(const torch::Tensor& lamps, const torch::Tensor& trueLamps);
 
+// The Kullback-Leibler divergence KL(t || p) (nats) of each row: targets t [N, cells]
+// (probabilities) and log p [N, cells]. [N].
+torch::Tensor cellDivergence(const torch::Tensor& target, const torch::Tensor& logProbability);
+
 // Supervision of where the emitter head puts light, as a classification over level 0's cells
-// (net/emitter_head.h): the Kullback-Leibler divergence KL(t || p) (nats) from the true
-// distribution t (each of the scene's M true lamps and windows [M, 3] puts 1/M on the cell
-// whose centre is nearest it) to the head's, p = the mean over its K lamps of
-// softmax(cellLogits [K, cells]); cellCentres [cells, 3]. 0 when p = t; unlike a squared
-// distance, an uncertain head lowers it by spreading p over the likely cells, not by moving
-// to their mean.
-torch::Tensor emitterCellLoss(const torch::Tensor& cellLogits, const torch::Tensor& cellCentres,
-                              const torch::Tensor& trueLamps);
+// (net/emitter_head.h): KL(t || p) from the true distribution t [cells] (1/M on the cell of each
+// of the scene's M true lamps and windows: net/lamp_cell_pretraining.h lampCellTarget) to the
+// head's, p = the mean over its K lamps of softmax(cellLogits [K, cells]). 0 when p = t;
+// unlike a squared distance, an uncertain head lowers it by spreading p over the likely
+// cells, not by moving to their mean.
+torch::Tensor emitterCellLoss(const torch::Tensor& cellLogits, const torch::Tensor& target);
 
 // A prior for closed rooms: the mean over an envmap's rays of the transmittance left behind
 // the volume ([1, 1, H, W], TorchEnvmap::transmittance); 0 where every ray ends on something

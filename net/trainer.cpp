@@ -438,6 +438,7 @@ struct PreparedExample {
     torch::Tensor refDepth;                     // [1, 1, H, W] metres; undefined without depth.exr
     std::vector<torch::Tensor> oracle;          // cubes; empty without oracle.vdb
     torch::Tensor lampCentres;                  // [M, 3] metres; undefined unless asked for
+    torch::Tensor lampCells;                    // [cells]: lampCellTarget of them; likewise
     std::vector<torch::Tensor> envmaps;         // [1, 3, h, w] linear HDR at the training size
     std::vector<torch::Tensor> envmapObserved;  // [1, 1, h, w] 0/1; only for the highlight loss
     std::vector<Vec3d> envmapPositions;
@@ -504,7 +505,10 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
     if ((o.emitterPositionWeight > 0 || o.emitterCellWeight > 0) &&
         fs::is_regular_file(dir / dataset::kScene)) {
         const torch::Tensor centres = lampCentresOfScene((dir / dataset::kScene).string());
-        if (centres.defined()) p.lampCentres = centres.to(device);
+        if (centres.defined()) {
+            p.lampCentres = centres.to(device);
+            p.lampCells = lampCellTarget(centres, *ex.cameras.far, kEmitterCellsPerSide).to(device);
+        }
     }
     if (fs::is_regular_file(dir / dataset::kOracle)) {
         p.oracle = loadOracleCubes((dir / dataset::kOracle).string(), p.inputs.layout, device);
@@ -822,9 +826,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                     loss = loss + o.emitterPositionWeight *
                                       emitterPositionLoss(out.emitters.position, ex.lampCentres);
                 if (o.emitterCellWeight > 0 && out.emitters.cellLogits.defined() &&
-                    ex.lampCentres.defined()) {
-                    cellLoss = emitterCellLoss(out.emitters.cellLogits, out.emitters.cellCentres,
-                                               ex.lampCentres);
+                    ex.lampCells.defined()) {
+                    cellLoss = emitterCellLoss(out.emitters.cellLogits, ex.lampCells);
                     loss = loss + o.emitterCellWeight * cellLoss;
                 }
                 if (stage >= 3) {

@@ -5,6 +5,7 @@
 // that loss alone, puts its lamps on the true one; and a "+apart" head, whose lamps take
 // different peaks.
 #include "net/emitter_head.h"
+#include "net/lamp_cell_pretraining.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
 #include "tests/net/net_test_scenes.h"
@@ -122,23 +123,25 @@ TEST(EmitterPositionLoss, TheMeanSquaredDistanceToTheNearestTrueLamp) {
 }
 
 TEST(EmitterCellLoss, TheDivergenceFromTheTrueLampsCells) {
-    // Four cells 1 m apart along x; the true lamps lie nearest cells 0 and 2: t = (1/2, 0, 1/2, 0).
-    const auto centres =
-        torch::tensor({0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 2.f, 0.f, 0.f, 3.f, 0.f, 0.f}).reshape({4, 3});
-    const auto truth = torch::tensor({0.1f, 0.2f, 0.f, 2.3f, -0.1f, 0.f}).reshape({2, 3});
+    // Four cells; the true lamps are in cells 0 and 2: t = (1/2, 0, 1/2, 0).
+    const auto truth = torch::tensor({0.5f, 0.f, 0.5f, 0.f});
     // Two lamps, each sure of one of the true cells: the mixture is t, the divergence 0.
     const auto sure = torch::tensor({60.f, 0.f, 0.f, 0.f, 0.f, 0.f, 60.f, 0.f}).reshape({2, 4});
-    EXPECT_NEAR(emitterCellLoss(sure, centres, truth).item<double>(), 0.0, 1e-6);
+    EXPECT_NEAR(emitterCellLoss(sure, truth).item<double>(), 0.0, 1e-6);
     // Uniform: p = 1/4 everywhere, KL = 2 x 1/2 ln((1/2) / (1/4)) = ln 2.
-    EXPECT_NEAR(emitterCellLoss(torch::zeros({2, 4}), centres, truth).item<double>(), std::log(2.0),
-                1e-6);
+    EXPECT_NEAR(emitterCellLoss(torch::zeros({2, 4}), truth).item<double>(), std::log(2.0), 1e-6);
     // Both lamps sure of cell 0: half of t has p ~ e^-60, a divergence of about 30.
     const auto oneSided = torch::tensor({60.f, 0.f, 0.f, 0.f, 60.f, 0.f, 0.f, 0.f}).reshape({2, 4});
-    EXPECT_GT(emitterCellLoss(oneSided, centres, truth).item<double>(), 25.0);
-    // Two true lamps in one cell count twice there: t = (1, 0, 0, 0), KL = ln 4 when uniform.
-    const auto sameCell = torch::tensor({0.f, 0.f, 0.f, 0.3f, 0.f, 0.f}).reshape({2, 3});
-    EXPECT_NEAR(emitterCellLoss(torch::zeros({2, 4}), centres, sameCell).item<double>(),
-                std::log(4.0), 1e-6);
+    EXPECT_GT(emitterCellLoss(oneSided, truth).item<double>(), 25.0);
+    // All the truth in one cell: KL = ln 4 when uniform.
+    EXPECT_NEAR(
+        emitterCellLoss(torch::zeros({2, 4}), torch::tensor({1.f, 0.f, 0.f, 0.f})).item<double>(),
+        std::log(4.0), 1e-6);
+    // The divergence of each row, as the pretraining scores it.
+    const auto rows =
+        cellDivergence(torch::tensor({0.5f, 0.f, 0.5f, 0.f, 1.f, 0.f, 0.f, 0.f}).reshape({2, 4}),
+                       torch::full({2, 4}, std::log(0.25f)));
+    EXPECT_TRUE(torch::allclose(rows, torch::tensor({std::log(2.f), std::log(4.f)})));
 }
 
 TEST(EmitterHead, APhotoHeadIsNamedBySuffixAndNeedsTheEmitters) {
@@ -164,6 +167,7 @@ TEST(EmitterHead, APhotoHeadTrainedOnTheCellLossPutsItsLampsOnTheTrueOne) {
     const auto photo = torch::rand({1, 3, 32, 48});
     const auto luminance = torch::tensor(0.5f);
     const auto lamp = torch::tensor({2.5f, -2.5f, 1.5f}).reshape({1, 3});
+    const auto cells = lampCellTarget(lamp, kLayout.s0 / 2, kEmitterCellsPerSide);
     Emitters start = head(level0, kLayout, luminance, photo);
     ASSERT_EQ(start.cellLogits.sizes(), torch::IntArrayRef({3, 512}));
     EXPECT_GT((start.position - lamp).norm(2, 1).min().item<double>(), 2.5);
@@ -175,13 +179,13 @@ TEST(EmitterHead, APhotoHeadTrainedOnTheCellLossPutsItsLampsOnTheTrueOne) {
     torch::optim::Adam adam(head->parameters(), torch::optim::AdamOptions(3e-3));
     for (int step = 0; step < 60; ++step) {
         const Emitters e = head(level0, kLayout, luminance, photo);
-        const auto loss = emitterCellLoss(e.cellLogits, e.cellCentres, lamp);
+        const auto loss = emitterCellLoss(e.cellLogits, cells);
         adam.zero_grad();
         loss.backward();
         adam.step();
     }
     const Emitters trained = head(level0, kLayout, luminance, photo);
-    EXPECT_LT(emitterCellLoss(trained.cellLogits, trained.cellCentres, lamp).item<double>(), 0.1);
+    EXPECT_LT(emitterCellLoss(trained.cellLogits, cells).item<double>(), 0.1);
     // Every lamp at the peak, within half a cell of the true one.
     EXPECT_LT((trained.position - lamp).norm(2, 1).max().item<double>(), 0.5);
 }
