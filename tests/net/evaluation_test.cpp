@@ -21,21 +21,36 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
-    const std::string data = test::uniqueTempPath("lighthouse_eval_test_data");
-    const std::string model = test::uniqueTempPath("lighthouse_eval_test.pt");
-    const std::string out = test::uniqueTempPath("lighthouse_eval_test_out");
-    test::writeTinyTrainingSet(data);
-    torch::manual_seed(7);
-    LighthouseNet untrained(test::tinyHdrConfig());
-    saveModel(untrained, model);
+// A tiny data set, an untrained model of `config` (weights from `seed`) and eval's options for
+// them: no oracle, one thread. The files go when it does.
+struct UntrainedEval {
+    std::string data, model, out;
+    EvalOptions options;
+    UntrainedEval(const std::string& name, const NetConfig& config, int seed)
+        : data(test::uniqueTempPath(name + "_data")),
+          model(test::uniqueTempPath(name + ".pt")),
+          out(test::uniqueTempPath(name + "_out")) {
+        test::writeTinyTrainingSet(data);
+        torch::manual_seed(seed);
+        LighthouseNet untrained(config);
+        saveModel(untrained, model);
+        options.data = data;
+        options.model = model;
+        options.out = out;
+        options.oracle = false;
+        options.threads = 1;
+    }
+    ~UntrainedEval() {
+        fs::remove_all(data);
+        fs::remove(model);
+        fs::remove_all(out);
+    }
+};
 
-    EvalOptions o;
-    o.data = data;
-    o.model = model;
-    o.out = out;
-    o.oracle = false;
-    o.threads = 1;
+TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
+    UntrainedEval run("lighthouse_eval_test", test::tinyHdrConfig(), 7);
+    EvalOptions& o = run.options;
+    const std::string& out = run.out;
     o.headroom = true;
     std::ostringstream progress;
     const EvalReport report = evaluate(o, progress);
@@ -100,30 +115,14 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
 
     o.shard = Shard{0, 2, true};
     EXPECT_THROW(evaluate(o, progress), InputError) << "headroom rows are not sharded";
-    fs::remove_all(data);
-    fs::remove(model);
-    fs::remove_all(out);
 }
 
 TEST(Evaluation, AnEmitterModelsLampsAreScoredFromEveryEnvmapsPoint) {
-    const std::string data = test::uniqueTempPath("lighthouse_eval_lamps_data");
-    const std::string model = test::uniqueTempPath("lighthouse_eval_lamps.pt");
-    const std::string out = test::uniqueTempPath("lighthouse_eval_lamps_out");
-    test::writeTinyTrainingSet(data);
     NetConfig config = test::tinyHdrConfig();
     config.emitters = 2;
-    torch::manual_seed(8);
-    LighthouseNet untrained(config);
-    saveModel(untrained, model);
-
-    EvalOptions o;
-    o.data = data;
-    o.model = model;
-    o.out = out;
-    o.oracle = false;
-    o.threads = 1;
+    UntrainedEval run("lighthouse_eval_lamps", config, 8);
     std::ostringstream progress;
-    const EvalReport report = evaluate(o, progress);
+    const EvalReport report = evaluate(run.options, progress);
     const std::size_t envmaps = report.methods[0].psnrAll.size();
     ASSERT_EQ(report.lamps.size(), 2 * envmaps);  // each lamp from each envmap's point
     int scored = 0;
@@ -138,10 +137,7 @@ TEST(Evaluation, AnEmitterModelsLampsAreScoredFromEveryEnvmapsPoint) {
     EXPECT_GT(scored, 0) << "no envmap with a lamp or window to place against";
     EXPECT_NE(report.markdown.find("Lamps of the emitter head (lamps.csv)"), std::string::npos)
         << report.markdown;
-    EXPECT_TRUE(fs::is_regular_file(fs::path(out) / "lamps.csv"));
-    fs::remove_all(data);
-    fs::remove(model);
-    fs::remove_all(out);
+    EXPECT_TRUE(fs::is_regular_file(fs::path(run.out) / "lamps.csv"));
 }
 
 TEST(Evaluation, TheNotesSayHowOursWasPredicted) {
