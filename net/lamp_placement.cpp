@@ -50,7 +50,7 @@ std::string lampPlacementMarkdown(const std::vector<LampPlacement>& lamps) {
        << 100.0 * double(placed) / double(degrees.size()) << "% within " << kLampPlacedDegrees
        << " deg";
     if (degrees.size() < lamps.size())
-        md << " (" << lamps.size() - degrees.size() << " pairs left out: no true highlight)";
+        md << " (" << lamps.size() - degrees.size() << " of the pairs left out: no true highlight)";
     md << ".\n";
     return md.str();
 }

@@ -17,7 +17,7 @@ TEST(LampPlacement, TheLineGivesTheMedianAngleTheShareWithin20DegAndTheOpacity) 
     EXPECT_NE(md.find("median opacity 0.3"), std::string::npos) << md;  // of 0.1 0.2 0.3 0.5
     EXPECT_NE(md.find("median 10.0 deg"), std::string::npos) << md;     // of 5 10 30
     EXPECT_NE(md.find("67% within 20 deg"), std::string::npos) << md;   // 2 of 3
-    EXPECT_NE(md.find("1 pairs left out"), std::string::npos) << md;
+    EXPECT_NE(md.find("1 of the pairs left out"), std::string::npos) << md;
 }
 
 TEST(LampPlacement, NoLampsNoLineAndNoHighlightsNoAngle) {
