@@ -156,15 +156,15 @@ constexpr double kEmitterHeadLearningRateScale = 100.0;
 // held-out photos just before).
 constexpr double kPretrainedPhotoLearningRateScale = 10.0;
 
-// The parameters of `module` among `all`, or those not among them (`among` false).
-std::vector<torch::Tensor> parametersOf(const std::vector<torch::Tensor>& all,
-                                        const std::vector<torch::Tensor>& module, bool among) {
+// The parameters of `all` that are not among `excluded` (the same tensors, not equal values).
+std::vector<torch::Tensor> parametersNotIn(const std::vector<torch::Tensor>& all,
+                                           const std::vector<torch::Tensor>& excluded) {
     std::vector<torch::Tensor> out;
     for (const auto& p : all) {
-        const bool in = std::any_of(module.begin(), module.end(), [&](const torch::Tensor& m) {
-            return m.unsafeGetTensorImpl() == p.unsafeGetTensorImpl();
+        const bool in = std::any_of(excluded.begin(), excluded.end(), [&](const torch::Tensor& e) {
+            return e.unsafeGetTensorImpl() == p.unsafeGetTensorImpl();
         });
-        if (in == among) out.push_back(p);
+        if (!in) out.push_back(p);
     }
     return out;
 }
@@ -182,13 +182,13 @@ void makeNetOptimizer(TrainingState& s, double lr, bool pretrainedPhoto) {
     const auto all = s.net->parameters();
     auto head = s.net->emitterHead->parameters();
     std::vector<torch::optim::OptimizerParamGroup> groups;
-    groups.emplace_back(parametersOf(all, head, false),
+    groups.emplace_back(parametersNotIn(all, head),
                         std::make_unique<torch::optim::AdamOptions>(lr));
     s.learningRateScales = {1.0, kEmitterHeadLearningRateScale};
     if (pretrainedPhoto) {
         auto pretrained = s.net->emitterHead->photoEncoder->parameters();
         for (const auto& p : s.net->emitterHead->photoCells->parameters()) pretrained.push_back(p);
-        head = parametersOf(head, pretrained, false);
+        head = parametersNotIn(head, pretrained);
         groups.emplace_back(pretrained, std::make_unique<torch::optim::AdamOptions>(
                                             lr * kPretrainedPhotoLearningRateScale));
         s.learningRateScales = {1.0, kPretrainedPhotoLearningRateScale,
