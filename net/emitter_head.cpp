@@ -14,7 +14,6 @@ namespace {
 // The head reads level 0 at 32^3: radiance feature (3), alpha (1), voxel position (3).
 constexpr int kInputChannels = 7;
 constexpr int64_t kReadResolution = 32;
-constexpr int64_t kCells = kEmitterCellsPerSide;
 constexpr double kPositionUnit = 4.0;  // metres, as the completion networks see positions
 // A new head starts dim (opacity sigmoid(-4) = 0.018), so that a model fine-tuned with one
 // begins by predicting what it predicted without, and lamp-bright: e^3 = 20 times the photo's
@@ -60,7 +59,8 @@ EmitterHeadImpl::EmitterHeadImpl(int k, bool photo, bool classifies, bool apart)
             "photo_cells",
             nn::Sequential(nn::Linear(kPhotoChannels * kPhotoRows * kPhotoColumns, 128), nn::ReLU(),
                            nn::Dropout(kPhotoCellsDropout),
-                           nn::Linear(128, kCells * kCells * kCells)));
+                           nn::Linear(128, kEmitterCellsPerSide * kEmitterCellsPerSide *
+                                               kEmitterCellsPerSide)));
         // Silent at the start: a head that was not pretrained begins as one without it.
         torch::NoGradGuard noGrad;
         auto last = photoCellsOutput();
@@ -101,13 +101,13 @@ Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayou
 
     Emitters e;
     const auto cellCentres =
-        F::adaptive_avg_pool3d(centres, F::AdaptiveAvgPool3dFuncOptions(kCells))
-            .reshape({3, kCells * kCells * kCells})
+        F::adaptive_avg_pool3d(centres, F::AdaptiveAvgPool3dFuncOptions(kEmitterCellsPerSide))
+            .reshape({3, kEmitterCellsPerSide * kEmitterCellsPerSide * kEmitterCellsPerSide})
             .t();                                         // [cells, 3]
     e.cellLogits = where(features).reshape({count, -1});  // [K, cells]
     if (classifiesPhoto) e.cellLogits = e.cellLogits + photoCells->forward(places);
     const auto weights =
-        placesApart ? apartPeakWeights(kPeakSharpness * e.cellLogits, kCells)
+        placesApart ? apartPeakWeights(kPeakSharpness * e.cellLogits, kEmitterCellsPerSide)
                     : torch::softmax(readsPhoto ? kPeakSharpness * e.cellLogits : e.cellLogits, 1);
     e.position = torch::matmul(weights, cellCentres);
 
