@@ -232,8 +232,11 @@ torch::Tensor emitterPositionLoss(const torch::Tensor& lamps, const torch::Tenso
 }
 
 torch::Tensor cellDivergence(const torch::Tensor& target, const torch::Tensor& logProbability) {
-    // xlogy: 0 ln 0 = 0, so cells without a lamp add nothing whatever p is there.
-    return (torch::xlogy(target, target) - target * logProbability).sum(1);
+    // xlogy: 0 ln 0 = 0, and a cell without a lamp adds nothing whatever p is there, even a
+    // masked one (p = 0, ln p = -inf, where 0 x -inf would be NaN).
+    const auto crossTerm =
+        torch::where(target > 0, target * logProbability, torch::zeros_like(logProbability));
+    return (torch::xlogy(target, target) - crossTerm).sum(1);
 }
 
 torch::Tensor emitterCellLoss(const torch::Tensor& cellLogits, const torch::Tensor& target) {

@@ -108,7 +108,8 @@ torch::Tensor binaryAlphaLoss(const std::vector<torch::Tensor>& cubes);
 torch::Tensor emitterPositionLoss(const torch::Tensor& lamps, const torch::Tensor& trueLamps);
 
 // The Kullback-Leibler divergence KL(t || p) (nats) of each row: targets t [N, cells]
-// (probabilities) and log p [N, cells]. [N].
+// (probabilities) and log p [N, cells]. [N]. Cells of target 0 add nothing, even where
+// log p = -inf.
 torch::Tensor cellDivergence(const torch::Tensor& target, const torch::Tensor& logProbability);
 
 // Supervision of where the emitter head puts light, as a classification over level 0's cells

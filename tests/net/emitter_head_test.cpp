@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <limits>
 
 namespace lh::net {
 namespace {
@@ -142,6 +143,15 @@ TEST(EmitterCellLoss, TheDivergenceFromTheTrueLampsCells) {
         cellDivergence(torch::tensor({0.5f, 0.f, 0.5f, 0.f, 1.f, 0.f, 0.f, 0.f}).reshape({2, 4}),
                        torch::full({2, 4}, std::log(0.25f)));
     EXPECT_TRUE(torch::allclose(rows, torch::tensor({std::log(2.f), std::log(4.f)})));
+    // A cell the truth leaves empty adds nothing even where p is 0 (ln p = -inf), and its
+    // gradient stays finite.
+    const auto masked =
+        torch::tensor({0.f, -std::numeric_limits<float>::infinity()}, torch::requires_grad());
+    const auto divergence =
+        cellDivergence(torch::tensor({1.f, 0.f}).reshape({1, 2}), masked.reshape({1, 2}));
+    EXPECT_NEAR(divergence.item<double>(), 0.0, 1e-7);
+    divergence.sum().backward();
+    EXPECT_TRUE(torch::isfinite(masked.grad()).all().item<bool>());
 }
 
 TEST(EmitterHead, APhotoHeadIsNamedBySuffixAndNeedsTheEmitters) {
