@@ -150,6 +150,14 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "divergence (nats) of its distribution over level 0's cells from the cells "
                     "of the example's true lamps and windows (scene.json); 0: off")
         ->capture_default_str();
+    cmd->add_option("--emitter-light-weight", o->emitterLightWeight,
+                    "With an emitter head: weight of the error of the irradiance its lamps send "
+                    "to each training envmap's point (per colour, on the six axis normals, as "
+                    "predict prunes them) against that of the envmap's unobserved pixels above "
+                    "luminance 1 (the lamps and windows the photo did not see): the log of the "
+                    "ratio short of it, the ratio less 1 beyond; it trains their radiance and "
+                    "opacity; 0: off")
+        ->capture_default_str();
     cmd->add_option("--pretrain-lamp-cells", o->pretrainLampCellEpochs,
                     "With --config ...+emitters+photo+cells: epochs of training the head's "
                     "photo classifier of where lamps are on the training photos alone, before "

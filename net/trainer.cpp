@@ -12,6 +12,7 @@
 #include "net/curve_plot.h"
 #include "net/device.h"
 #include "net/distributed.h"
+#include "net/emitter_light.h"
 #include "net/exposure_filter.h"
 #include "net/highlight_gain.h"
 #include "net/lamp_cell_pretraining.h"
@@ -19,6 +20,7 @@
 #include "net/losses.h"
 #include "net/mpi_render.h"
 #include "net/oracle_targets.h"
+#include "net/predictor.h"
 #include "net/tensor_image.h"
 #include "net/training_data.h"
 #include "net/vgg_loss.h"
@@ -78,6 +80,8 @@ void TrainOptions::validate() const {
         throw InputError("--emitter-position-weight must be in [0, 1000]");
     if (!(emitterCellWeight >= 0 && emitterCellWeight <= 1000))
         throw InputError("--emitter-cell-weight must be in [0, 1000]");
+    if (!(emitterLightWeight >= 0 && emitterLightWeight <= 1000))
+        throw InputError("--emitter-light-weight must be in [0, 1000]");
     if (pretrainLampCellEpochs < 0 || pretrainLampCellEpochs > 1000)
         throw InputError("--pretrain-lamp-cells must be in [0, 1000] epochs");
     if (!(closureWeight >= 0 && closureWeight <= 100))
@@ -112,13 +116,14 @@ struct LogRow {
     double valPsnr = NAN, valAngular = NAN;
     double voxel = 0, depth = 0;
     double emitterCells = 0;  // emitterCellLoss, unweighted (nats); not in the CSV log
+    double emitterLight = 0;  // emitterLightLoss, unweighted; not in the CSV log
     double secondsData = 0, secondsForward = 0, secondsBackward = 0;  // per iteration, mean
     double secondsAllReduce = 0;  // per iteration, mean: data-parallel communication
 };
 
 // Loss terms summed per iteration: total, view, envmap, adversarial, discriminator, voxel,
-// depth, emitter cells.
-constexpr int kLossTerms = 8;
+// depth, emitter cells, emitter light.
+constexpr int kLossTerms = 9;
 
 constexpr const char* kLogHeader =
     "iteration,stage,loss_total,loss_view,loss_envmap,loss_adversarial,loss_discriminator,lr,"
@@ -440,7 +445,8 @@ struct PreparedExample {
     torch::Tensor lampCentres;                  // [M, 3] metres; undefined unless asked for
     torch::Tensor lampCells;                    // [cells]: lampCellTarget of them; likewise
     std::vector<torch::Tensor> envmaps;         // [1, 3, h, w] linear HDR at the training size
-    std::vector<torch::Tensor> envmapObserved;  // [1, 1, h, w] 0/1; only for the highlight loss
+    std::vector<torch::Tensor> envmapObserved;  // [1, 1, h, w] 0/1; only for the highlight and
+                                                // lamp-light losses
     std::vector<Vec3d> envmapPositions;
 };
 
@@ -456,7 +462,8 @@ torch::Tensor maskAtSize(const std::vector<std::uint8_t>& mask, int width, int h
 PreparedExample prepareExample(const std::string& directory, const NetConfig& config,
                                const TrainOptions& o, Random& rng, const torch::Device& device,
                                bool direct) {
-    TrainingExample ex = loadExample(directory, /*withMasks=*/o.highlightWeight > 0);
+    TrainingExample ex =
+        loadExample(directory, /*withMasks=*/o.highlightWeight > 0 || o.emitterLightWeight > 0);
     Augmentation a;  // the identity unless augmenting
     if (o.augment) a = drawAugmentation(rng);
     // Expose the unclipped renders where the example has them, then clip, as a camera does
@@ -577,6 +584,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         throw InputError(
             "--pretrain-lamp-cells trains the photo classifier of a '+cells' emitter "
             "head: use a --config such as wide+emitters+photo+cells");
+    if (o.emitterLightWeight > 0 && netConfig.emitters == 0)
+        throw InputError(
+            "--emitter-light-weight supervises an emitter head's lamps: use a --config with "
+            "'+emitters', such as wide+emitters+photo+cells+apart");
     netConfig.pruneAlpha = o.pruneAlpha;
     netConfig.highlightGain = o.highlightGain;
     s.net = LighthouseNet(netConfig);
@@ -716,6 +727,10 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
     if (o.emitterCellWeight > 0)
         progress << "; emitter head also " << o.emitterCellWeight
                  << " x divergence of its cells from the true lamps' and windows' (scene.json)";
+    if (o.emitterLightWeight > 0)
+        progress << "; emitter head also " << o.emitterLightWeight
+                 << " x error of its lamps' axis irradiance against the envmaps' unobserved "
+                    "highlights' (log short of it, linear beyond)";
     if (o.directAdversarialWeight > 0)
         progress << "; envmaps also " << o.directAdversarialWeight
                  << " x the PatchGAN generator loss, from the first step";
@@ -753,8 +768,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         // Everything random in this iteration comes from (seed, iteration, example of the batch).
         const int perRank = o.batch / world;
         const double commBefore = comm ? comm->communicationSeconds() : 0;
-        // total, view, envmap, adversarial, discriminator, voxel, depth, emitter cells
-        double sums[kLossTerms] = {0, 0, 0, 0, 0, 0, 0, 0};
+        // total, view, envmap, adversarial, discriminator, voxel, depth, emitter cells, light
+        double sums[kLossTerms] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
         s.optimizer->zero_grad();
         for (int j = rank * perRank; j < (rank + 1) * perRank; ++j) {
             Random rng(j == 0 ? mixSeed(o.seed, uint64_t(it))
@@ -777,7 +792,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             torch::Tensor envLoss = torch::zeros({}), advLoss = torch::zeros({}),
                           discLoss = torch::zeros({});
             torch::Tensor voxLoss = torch::zeros({}), depthLoss = torch::zeros({});
-            torch::Tensor cellLoss = torch::zeros({});  // emitterCellLoss, unweighted
+            torch::Tensor cellLoss = torch::zeros({});   // emitterCellLoss, unweighted
+            torch::Tensor lightLoss = torch::zeros({});  // emitterLightLoss, unweighted
             if (ex.refDepth.defined()) {
                 depthLoss = mpiDepthLoss(out.mpi, ex.inputs.depths, ex.refDepth);
                 loss = loss + depthLoss;
@@ -830,6 +846,21 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                     cellLoss = emitterCellLoss(out.emitters.cellLogits, ex.lampCells);
                     loss = loss + o.emitterCellWeight * cellLoss;
                 }
+                if (o.emitterLightWeight > 0 && out.emitters.position.defined()) {
+                    // The lamps' light as predict exports it: pruned where the model's volumes
+                    // are.
+                    const double threshold =
+                        config.pruneAlpha > 0 ? config.pruneAlpha : kDefaultPruneAlpha;
+                    for (size_t k = 0; k < ex.envmaps.size(); ++k) {
+                        const torch::Tensor observed =
+                            k < ex.envmapObserved.size() ? ex.envmapObserved[k] : torch::Tensor();
+                        lightLoss = lightLoss + emitterLightLoss(out.emitters, ex.inputs.layout,
+                                                                 threshold, ex.envmapPositions[k],
+                                                                 ex.envmaps[k], observed) /
+                                                    double(ex.envmaps.size());
+                    }
+                    loss = loss + o.emitterLightWeight * lightLoss;
+                }
                 if (stage >= 3) {
                     // Discriminator step on real vs (detached) predicted envmaps, then the
                     // generator term. Data-parallel: one step per example of the rank's slice, on
@@ -852,8 +883,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             clock = std::chrono::steady_clock::now();
             (o.batch > 1 ? loss / o.batch : loss).backward();
             window.secondsBackward += secondsSince(clock);
-            const torch::Tensor* terms[kLossTerms] = {&loss,     &viewLoss, &envLoss,   &advLoss,
-                                                      &discLoss, &voxLoss,  &depthLoss, &cellLoss};
+            const torch::Tensor* terms[kLossTerms] = {&loss,      &viewLoss, &envLoss,
+                                                      &advLoss,   &discLoss, &voxLoss,
+                                                      &depthLoss, &cellLoss, &lightLoss};
             for (int t = 0; t < kLossTerms; ++t) sums[t] += terms[t]->item<double>() / o.batch;
         }
         auto clock = std::chrono::steady_clock::now();
@@ -881,6 +913,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
         window.voxel += sums[5];
         window.depth += sums[6];
         window.emitterCells += sums[7];
+        window.emitterLight += sums[8];
         ++windowCount;
 
         const int done = it + 1;
@@ -899,6 +932,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             row.voxel = window.voxel / windowCount;
             row.depth = window.depth / windowCount;
             row.emitterCells = window.emitterCells / windowCount;
+            row.emitterLight = window.emitterLight / windowCount;
             row.secondsData = window.secondsData / windowCount;
             row.secondsForward = window.secondsForward / windowCount;
             row.secondsBackward = window.secondsBackward / windowCount;
@@ -918,6 +952,7 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
             if (!direct || stage >= 3) progress << ", adv " << row.adversarial;
             if (stage >= 3) progress << ", discriminator " << row.discriminator;
             if (o.emitterCellWeight > 0) progress << ", emitter cells " << row.emitterCells;
+            if (o.emitterLightWeight > 0) progress << ", emitter light " << row.emitterLight;
             progress << ")  " << std::setprecision(2) << row.itPerSecond << " it/s (data "
                      << row.secondsData << " s, forward " << row.secondsForward << " s, backward "
                      << row.secondsBackward << " s";

@@ -126,6 +126,13 @@ struct TrainOptions {
     // lamps and windows (scene.json). Where the position loss teaches the mean of where lamps
     // may be, this keeps the likely places apart. 0: off.
     double emitterCellWeight = 0.0;
+    // Weight of the emitter light loss (net/emitter_light.h emitterLightLoss) on the emitter
+    // head's lamps: their axis irradiance per colour at each training envmap's point, as small
+    // sources pruned as predict prunes, against that of the envmap's unobserved highlights
+    // (luminance above 1): on a log scale short of it, linearly beyond. It asks the lamps for
+    // the truth's power, through their radiance and opacity, where the envmap losses only say
+    // "not like that". 0: off.
+    double emitterLightWeight = 0.0;
     // Epochs of pretraining of a "+cells" emitter head's photo classifier on the photos alone
     // (net/lamp_cell_pretraining.h) of every scene that is not held out (--max-clipped does not
     // apply), before the first step of a fresh run; the log scores it on the held-out scenes

@@ -193,10 +193,10 @@ TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
 }
 
 TEST_F(TrainerTest, TheEmitterHeadsLossWeightsSteerTheHead) {
-    // The tiny set's rooms have lamps in scene.json: with the lamp-position loss (a plain head)
-    // or the lamp-cell loss (a "+photo" head) on, the head's gradients differ, so do the
-    // weights, and the log names the term (the cell loss also its value); a negative weight is
-    // refused.
+    // The tiny set's rooms have lamps in scene.json: with the lamp-position loss (a plain head),
+    // the lamp-cell loss (a "+photo" head) or the lamp-light loss on, the head's gradients
+    // differ, so do the weights, and the log names the term (the cell and light losses also
+    // their values); a negative weight is refused.
     struct HeadLoss {
         const char* name;
         bool photoHead;
@@ -211,7 +211,13 @@ TEST_F(TrainerTest, TheEmitterHeadsLossWeightsSteerTheHead) {
         {"cells",
          true,
          &TrainOptions::emitterCellWeight,
-         {"emitter head also 10 x divergence of its cells", ", emitter cells "}}};
+         {"emitter head also 10 x divergence of its cells", ", emitter cells "}},
+        {"light",
+         false,
+         &TrainOptions::emitterLightWeight,
+         {"emitter head also 10 x error of its lamps' axis irradiance against the envmaps' "
+          "unobserved",
+          ", emitter light "}}};
     for (const HeadLoss& loss : losses) {
         std::ostringstream log;
         const std::string name = std::string("lighthouse_trainer_emitter_") + loss.name;
@@ -233,6 +239,11 @@ TEST_F(TrainerTest, TheEmitterHeadsLossWeightsSteerTheHead) {
         negative.*loss.weight = -1.0;
         EXPECT_THROW(negative.validate(), InputError) << loss.name;
     }
+    // The light loss needs lamps to supervise: a model without a head is refused.
+    TrainOptions headless = options("lighthouse_trainer_emitter_light_headless");
+    headless.emitterLightWeight = 1.0;
+    std::ostringstream refused;
+    EXPECT_THROW(train(headless, refused), InputError);
 }
 
 TEST_F(TrainerTest, PretrainingTheLampCellsComesBeforeAFreshRunOnly) {
