@@ -1,5 +1,6 @@
 #include "net/emitter_light.h"
 
+#include "image/luminance.h"
 #include "net/losses.h"
 #include "net/tensor_image.h"
 
@@ -102,17 +103,17 @@ torch::Tensor emitterAxisIrradiance(const Emitters& emitters, const torch::Tenso
 }
 
 torch::Tensor highlightAxisIrradiance(const torch::Tensor& envmap, const torch::Tensor& observed) {
-    auto bright = (luminanceTensor(envmap) > 1.0).to(envmap.scalar_type());
+    auto bright = (luminanceTensor(envmap) > kLampLuminance).to(envmap.scalar_type());
     if (observed.defined()) bright = bright * (1.0 - observed.to(bright.options()));
     return axisIrradianceTensor(envmap.clamp_min(0.0) * bright).reshape({3, 6});
 }
 
 torch::Tensor emitterLightLoss(const Emitters& emitters, const VolumeLayout& layout,
-                               double pruneThreshold, const Vec3d& point,
-                               const torch::Tensor& envmap, const torch::Tensor& observed) {
-    const auto truth = highlightAxisIrradiance(envmap, observed);
-    const auto whole = axisIrradianceTensor(envmap.clamp_min(0.0)).reshape({3, 6});
-    const auto floor = kLightFloorShare * whole.mean(1, /*keepdim=*/true) + 1e-6;  // [3, 1]
+                               double pruneThreshold, const std::vector<Vec3d>& points,
+                               const std::vector<torch::Tensor>& envmaps,
+                               const std::vector<torch::Tensor>& observed) {
+    TORCH_CHECK(!envmaps.empty() && points.size() == envmaps.size(),
+                "emitterLightLoss needs one point per envmap");
     // Where the lamps are is the cell loss's to teach, and how large the envmap losses'; this
     // one reads both and asks only how much light the lamps send from there (their radiance
     // and opacity), so that a lamp facing the truth's light brightens and one facing none
@@ -121,14 +122,24 @@ torch::Tensor emitterLightLoss(const Emitters& emitters, const VolumeLayout& lay
     Emitters placed = emitters;
     placed.position = emitters.position.detach();
     placed.radius = emitters.radius.detach();
-    const auto predicted =
-        emitterAxisIrradiance(placed, emitterIntensity(placed, layout, pruneThreshold), point);
-    // Short of the truth, the log of the ratio: a lamp too faint to show is pulled up as
-    // strongly as one half as bright as it should be. Beyond it, the ratio less 1, which grows
-    // with all the light a lamp adds: where its side is uncertain, overshooting costs more than
-    // falling short, as it does in the irradiance metric. Both are 0 with slope 1 at the truth.
-    const auto ratio = (floor + predicted) / (floor + truth);
-    return torch::where(ratio < 1.0, -torch::log(ratio), ratio - 1.0).mean();
+    // The same lamps light every envmap: their intensity once.
+    const auto intensity = emitterIntensity(placed, layout, pruneThreshold);
+    auto total = torch::zeros({}, intensity.options());
+    for (size_t k = 0; k < envmaps.size(); ++k) {
+        const auto truth = highlightAxisIrradiance(
+            envmaps[k], k < observed.size() ? observed[k] : torch::Tensor());
+        const auto whole = axisIrradianceTensor(envmaps[k].clamp_min(0.0)).reshape({3, 6});
+        const auto floor = kLightFloorShare * whole.mean(1, /*keepdim=*/true) + 1e-6;  // [3, 1]
+        const auto predicted = emitterAxisIrradiance(placed, intensity, points[k]);
+        // Short of the truth, the log of the ratio: a lamp too faint to show is pulled up as
+        // strongly as one half as bright as it should be. Beyond it, the ratio less 1, which
+        // grows with all the light a lamp adds: where its side is uncertain, overshooting costs
+        // more than falling short, as it does in the irradiance metric. Both are 0 with slope 1
+        // at the truth.
+        const auto ratio = (floor + predicted) / (floor + truth);
+        total = total + torch::where(ratio < 1.0, -torch::log(ratio), ratio - 1.0).mean();
+    }
+    return total / double(envmaps.size());
 }
 
 }  // namespace lh::net

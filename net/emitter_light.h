@@ -28,6 +28,8 @@
 #include "net/torch_pch.h"
 #include "vdb/volume_layout.h"
 
+#include <vector>
+
 namespace lh::net {
 
 // Ein(A) = int_0^A (1 - e^-u) / u du for A >= 0, elementwise; differentiable.
@@ -57,11 +59,13 @@ torch::Tensor emitterAxisIrradiance(const Emitters& emitters, const torch::Tenso
 torch::Tensor highlightAxisIrradiance(const torch::Tensor& envmap,
                                       const torch::Tensor& observed = {});
 
-// The emitter light loss: mean over the three channels and six normals of f(r), r = (e +
+// The emitter light loss of one example's envmaps [1, 3, H, W] seen from `points` (one each),
+// their mean: per envmap, the mean over the three channels and six normals of f(r), r = (e +
 // predicted) / (e + truth), f(r) = -ln r below 1 and r - 1 above; predicted =
 // emitterAxisIrradiance, truth = highlightAxisIrradiance(envmap, observed) (the lamps and
-// windows the photo did not see: the MPI shows those it saw), e per channel a twentieth of the
-// envmap's whole mean axis irradiance (light that small does not move the irradiance metric).
+// windows the photo did not see: the MPI shows those it saw; `observed` may be shorter than
+// `envmaps`, or empty, where envmaps have no mask), e per channel a twentieth of the envmap's
+// whole mean axis irradiance (light that small does not move the irradiance metric).
 // 0 when the lamps send the unseen highlights' light, in its colour, from every side. Short of
 // it, a lamp is pulled up on a log scale, as strongly when too faint to show as when half as
 // bright as it should be; beyond it, the cost grows with all the light it adds, as in the
@@ -70,7 +74,8 @@ torch::Tensor highlightAxisIrradiance(const torch::Tensor& envmap,
 // radii read, not trained: where they are is the lamp-cell loss's to teach and how large the
 // envmap losses', how much light they send from there (radiance and opacity) this loss's.
 torch::Tensor emitterLightLoss(const Emitters& emitters, const VolumeLayout& layout,
-                               double pruneThreshold, const Vec3d& point,
-                               const torch::Tensor& envmap, const torch::Tensor& observed = {});
+                               double pruneThreshold, const std::vector<Vec3d>& points,
+                               const std::vector<torch::Tensor>& envmaps,
+                               const std::vector<torch::Tensor>& observed = {});
 
 }  // namespace lh::net

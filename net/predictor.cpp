@@ -16,6 +16,10 @@ namespace lh::net {
 
 std::string defaultModelPath() { return LIGHTHOUSE_DEFAULT_MODEL; }
 
+float defaultPruneAlpha(const NetConfig& config) {
+    return config.pruneAlpha > 0 ? float(config.pruneAlpha) : kDefaultPruneAlpha;
+}
+
 void validateStereoPair(const StereoPair& pair) {
     const CamerasFile& c = pair.cameras;
     if (!c.src)
@@ -95,10 +99,8 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
         impl_->net =
             loadModel(options.model.empty() ? defaultModelPath() : options.model, impl_->device);
     }
-    const double trainedUnder = impl_->net->config.pruneAlpha;
-    impl_->pruneAlpha = options.pruneAlpha >= 0 ? options.pruneAlpha
-                        : trainedUnder > 0      ? float(trainedUnder)
-                                                : kDefaultPruneAlpha;
+    impl_->pruneAlpha =
+        options.pruneAlpha >= 0 ? options.pruneAlpha : defaultPruneAlpha(impl_->net->config);
     impl_->shell = options.shell;
     impl_->highlightGain =
         options.highlightGain >= 0 ? options.highlightGain : impl_->net->config.highlightGain;

@@ -60,6 +60,10 @@ struct Prediction {
 // the demo pair's voxels (0.01: 34%) and scores 0.2 dB higher on dev_cycles; 0.05 loses 0.3 dB.
 constexpr float kDefaultPruneAlpha = 0.03f;
 
+// The threshold predict prunes a model of `config` at unless told otherwise: the one it was
+// trained under (train --prune-alpha), else kDefaultPruneAlpha.
+float defaultPruneAlpha(const NetConfig& config);
+
 struct PredictorOptions {
     std::string model;  // empty: the bundled model (models/standard.pt)
     std::string device = "cpu";

@@ -849,16 +849,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                 if (o.emitterLightWeight > 0 && out.emitters.position.defined()) {
                     // The lamps' light as predict exports it: pruned where the model's volumes
                     // are.
-                    const double threshold =
-                        config.pruneAlpha > 0 ? config.pruneAlpha : kDefaultPruneAlpha;
-                    for (size_t k = 0; k < ex.envmaps.size(); ++k) {
-                        const torch::Tensor observed =
-                            k < ex.envmapObserved.size() ? ex.envmapObserved[k] : torch::Tensor();
-                        lightLoss = lightLoss + emitterLightLoss(out.emitters, ex.inputs.layout,
-                                                                 threshold, ex.envmapPositions[k],
-                                                                 ex.envmaps[k], observed) /
-                                                    double(ex.envmaps.size());
-                    }
+                    lightLoss =
+                        emitterLightLoss(out.emitters, ex.inputs.layout, defaultPruneAlpha(config),
+                                         ex.envmapPositions, ex.envmaps, ex.envmapObserved);
                     loss = loss + o.emitterLightWeight * lightLoss;
                 }
                 if (stage >= 3) {

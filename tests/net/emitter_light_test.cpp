@@ -135,7 +135,7 @@ TEST(EmitterLight, TheLossAsksForTheHighlightsLight) {
                                       torch::Tensor* gradient) {
         Emitters e = lampAt(Vec3d(2.0, 0.0, 0.0), 0.3, 0.3, radiance);
         e.radiance.requires_grad_(true);
-        const auto loss = emitterLightLoss(e, kLayout, 0.03, origin, light);
+        const auto loss = emitterLightLoss(e, kLayout, 0.03, {origin}, {light});
         if (gradient) {
             loss.backward();
             *gradient = e.radiance.grad().sum();
@@ -173,7 +173,7 @@ TEST(EmitterLight, TheLossAsksForTheHighlightsLight) {
     Emitters white = lampAt(Vec3d(2.0, 0.0, 0.0), 0.3, 0.3, matched);
     for (torch::Tensor* t : {&white.radiance, &white.alpha, &white.position, &white.radius})
         t->requires_grad_(true);
-    emitterLightLoss(white, kLayout, 0.03, origin, red).backward();
+    emitterLightLoss(white, kLayout, 0.03, {origin}, {red}).backward();
     EXPECT_LT(white.radiance.grad()[0][0].item<double>(), 0.0);
     EXPECT_GT(white.radiance.grad()[0][2].item<double>(), 0.0);
     EXPECT_NE(white.alpha.grad()[0].item<double>(), 0.0);
