@@ -20,6 +20,7 @@ void addSparsifyCommand(CLI::App& app);
 void addShellCommand(CLI::App& app);
 void addBenchSparsityCommand(CLI::App& app);
 void addPhotoClippingCommand(CLI::App& app);
+void addEvalDiffCommand(CLI::App& app);
 void addEditCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addImportCommand(CLI::App& app);

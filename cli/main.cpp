@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
     lh::cli::addShellCommand(app);
     lh::cli::addBenchSparsityCommand(app);
     lh::cli::addPhotoClippingCommand(app);
+    lh::cli::addEvalDiffCommand(app);
 
     std::unique_ptr<tbb::global_control> threadLimit;
     app.parse_complete_callback([&] {

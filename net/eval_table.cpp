@@ -49,16 +49,9 @@ std::string signedCell(const std::vector<double>& values, int precision) {
     return out.str();
 }
 
-struct CsvRow {
-    std::string example;
-    std::size_t envmap = 0;
-    std::string method;
-    MetricValues values{};
-};
-
 // Parses a row written by evalCsvRow; throws FileError naming `where`.
-CsvRow parseCsvRow(const std::string& line, const std::string& where) {
-    CsvRow row;
+EvalCsvRow parseCsvRow(const std::string& line, const std::string& where) {
+    EvalCsvRow row;
     const auto bad = [&] { return FileError("'" + where + "': malformed row '" + line + "'"); };
     const std::size_t c1 = line.find(','),
                       c2 = c1 == std::string::npos ? c1 : line.find(',', c1 + 1);
@@ -83,6 +76,19 @@ CsvRow parseCsvRow(const std::string& line, const std::string& where) {
 }  // namespace
 
 std::string evalCsvHeader() { return "example,envmap,method," + metricColumnsCsvHeader() + "\n"; }
+
+std::vector<EvalCsvRow> readEvalCsv(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw FileError("cannot read eval metrics '" + path + "'");
+    std::string line;
+    std::getline(in, line);
+    if (line + "\n" != evalCsvHeader())
+        throw FileError("'" + path + "' is not an eval's metrics.csv (its header differs)");
+    std::vector<EvalCsvRow> rows;
+    while (std::getline(in, line))
+        if (!line.empty()) rows.push_back(parseCsvRow(line, path));
+    return rows;
+}
 
 std::string evalCsvRow(const std::string& example, std::size_t envmap, const std::string& method,
                        const MetricValues& values, bool exact) {
@@ -208,15 +214,13 @@ std::string mergeEvalShards(const std::string& dir) {
     const std::size_t scenes = header.value("scenes", std::size_t(0));
 
     // Every scene's rows, from the shard that owns it, in the order of the one run.
-    std::vector<std::vector<CsvRow>> rowsByScene(scenes);
+    std::vector<std::vector<EvalCsvRow>> rowsByScene(scenes);
     std::vector<bool> seen(scenes, false);
     std::vector<std::pair<std::size_t, fs::path>> strips;  // (scene, file), each shard's first rows
     for (const nlohmann::json& r : records) {
         const std::string csvName = r.value("csv", "");
         const fs::path csvPath = fs::path(dir) / csvName;
-        std::ifstream in(csvPath);
-        if (csvName.empty() || !in)
-            throw FileError("cannot read the shard's metrics '" + csvPath.string() + "'");
+        if (csvName.empty()) throw FileError("shard records in '" + dir + "' name no metrics file");
         std::map<std::string, std::size_t> sceneOf;
         for (const nlohmann::json& e : r["examples"]) {
             const std::size_t index = e.value("index", scenes);
@@ -226,13 +230,7 @@ std::string mergeEvalShards(const std::string& dir) {
             seen[index] = true;
             sceneOf[e.value("id", "")] = index;
         }
-        std::string line;
-        std::getline(in, line);
-        if (line + "\n" != evalCsvHeader())
-            throw FileError("'" + csvPath.string() + "' is not an eval shard's CSV");
-        while (std::getline(in, line)) {
-            if (line.empty()) continue;
-            CsvRow row = parseCsvRow(line, csvPath.string());
+        for (EvalCsvRow& row : readEvalCsv(csvPath.string())) {
             const auto it = sceneOf.find(row.example);
             if (it == sceneOf.end())
                 throw FileError("'" + csvPath.string() + "' scores example '" + row.example +
@@ -254,7 +252,7 @@ std::string mergeEvalShards(const std::string& dir) {
     std::ostringstream csv;
     csv << evalCsvHeader();
     for (const auto& rows : rowsByScene)
-        for (const CsvRow& row : rows) {
+        for (const EvalCsvRow& row : rows) {
             std::size_t m = 0;
             while (m < methods.size() && methods[m].name != row.method) ++m;
             if (m == methods.size())

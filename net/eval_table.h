@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace lh {
 struct ImageRGB;
@@ -29,6 +30,17 @@ std::string evalCsvHeader();
 std::string evalCsvRow(const std::string& example, std::size_t envmap, const std::string& method,
                        const MetricValues& values, bool exact);
 void addScores(MethodScores& scores, const MetricValues& values);
+
+// One row of metrics.csv (or of an eval shard's CSV), as evalCsvRow writes it.
+struct EvalCsvRow {
+    std::string example;
+    std::size_t envmap = 0;
+    std::string method;
+    MetricValues values{};
+};
+// The rows of the metrics.csv (or shard CSV) at `path`, in file order. Throws FileError if it
+// cannot be read, its header is not evalCsvHeader(), or a row is malformed.
+std::vector<EvalCsvRow> readEvalCsv(const std::string& path);
 
 // Table 2 in Markdown, with its note on `envmaps` of `scenes` scenes of `data`.
 std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::size_t scenes,

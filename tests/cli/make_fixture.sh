@@ -65,4 +65,14 @@ printf '# one point per line\n0 0 1\n0.5,0,2\n\n-0.5 0.1 1.5  # trailing comment
 printf '0 0 1\n1 2\n' >badpoints.txt
 printf '# only a comment\n\n' >emptypoints.txt
 
+# Two evals' metrics.csv of the same three envmaps (eval-diff): B's PSNR is up 1, 0.5 and 2 dB,
+# every other metric the same.
+metrics_header='example,envmap,method,psnr_all_db,angular_all_deg,psnr_observed_db,angular_observed_deg,log_lum_rmse_all,log_lum_rmse_observed,irradiance_rel_error,radiance_ratio,psnr_unobserved_db,srgb_bias_unobserved,highlight_recall,highlight_precision'
+mkdir -p eval_a eval_b
+rest='8,20,4,0.4,0.3,0.56,0.33,15,0.02,0.16,nan'
+printf '%s\n00,0,"ours",10,%s\n00,1,"ours",12,%s\n01,0,"ours",14,%s\n' \
+    "$metrics_header" "$rest" "$rest" "$rest" >eval_a/metrics.csv
+printf '%s\n01,0,"ours",16,%s\n00,0,"ours",11,%s\n00,1,"ours",12.5,%s\n' \
+    "$metrics_header" "$rest" "$rest" "$rest" >eval_b/metrics.csv
+
 echo "fixture ready in $work"
