@@ -3,10 +3,10 @@
 //
 // Fine-tuned inside the whole pipeline, the head meets each training room once, at about three
 // seconds a step: 800 examples were too few for a fresh photo encoder to learn anything about
-// the lamps a photo does not show (models/README.md, "the photo head"). The photo branch alone
-// costs milliseconds a photo, so it can see every training photo many times first. Each photo
-// is also seen mirrored left to right, with its lamps' cells mirrored (the volume's x axis is
-// the photo's rightward axis).
+// the lamps a photo does not show (models/EXPERIMENTS.md, "the photo head"). The photo branch
+// alone costs milliseconds a photo, so it can see every training photo many times first. Each
+// photo is also seen mirrored left to right, with its lamps' cells mirrored (the volume's x
+// axis is the photo's rightward axis).
 #pragma once
 
 #include "net/emitter_head.h"

@@ -50,7 +50,7 @@ torch::Tensor logRadianceEncode(const torch::Tensor& linear);
 // Each pixel pays for its own term, so a lamp pixel left dim and a wall pixel shown as a
 // highlight cost alike. (Taking each term's mean over its own pixels instead made a false
 // highlight cost about a hundredth of a missed lamp pixel: the model then showed more lamps
-// and as many false ones; models/README.md, "the highlight loss".)
+// and as many false ones; models/EXPERIMENTS.md, "the highlight loss".)
 torch::Tensor highlightLoss(const torch::Tensor& predictedLinear, const torch::Tensor& targetLinear,
                             const torch::Tensor& observed);
 

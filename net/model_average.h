@@ -2,7 +2,7 @@
 // fine-tuned from one starting model with different losses or seeds lie in one basin of the
 // loss, and their weight average can score better than each of them, at the cost of one model
 // (unlike an ensemble, which predicts with all of them). On the fine-tunes of this project's
-// bundled model it scored within 0.05 dB of its models' mean (models/README.md, "model
+// bundled model it scored within 0.05 dB of its models' mean (models/EXPERIMENTS.md, "model
 // soups"). Torch-free: the CLI includes it.
 #pragma once
 
