@@ -28,11 +28,12 @@ Emitters lampAt(const Vec3d& p, double radius, double alpha, double radiance) {
 }
 
 // The axis irradiance [3, 6] of the envmap the renderer draws at the origin of the lamp alone
-// (pruned at `threshold`, 0: not).
+// (pruned at `threshold`, 0: not). At 180x90 pixels and 96 samples the ratios below are those
+// at 360x180 and 192 within 3e-4 (and 1.2 s against 15 s).
 torch::Tensor renderedAxisIrradiance(const Emitters& e, double threshold) {
     std::vector<torch::Tensor> cubes = addEmitters({torch::zeros({1, 4, 32, 32, 32})}, e, kLayout);
     if (threshold > 0) cubes = pruneCubesStraightThrough(cubes, threshold);
-    const auto envmap = renderEnvmapTorch(cubes, kLayout, Vec3d(0.0, 0.0, 0.0), 360, 180, 192);
+    const auto envmap = renderEnvmapTorch(cubes, kLayout, Vec3d(0.0, 0.0, 0.0), 180, 90, 96);
     return axisIrradianceTensor(envmap).reshape({3, 6});
 }
 

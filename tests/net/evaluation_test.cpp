@@ -86,8 +86,9 @@ TEST(Evaluation, HeadroomRowsPutOnePartOfTheTruthIntoOurs) {
     // The unobserved lamps and windows change only unobserved pixels.
     const MethodScores& unseenLamps = report.headroom[4];
     for (size_t i = 0; i < ours.psnrObserved.size(); ++i) {
-        if (!std::isnan(ours.psnrObserved[i]))
+        if (!std::isnan(ours.psnrObserved[i])) {
             EXPECT_EQ(unseenLamps.psnrObserved[i], ours.psnrObserved[i]);
+        }
     }
     EXPECT_NE(report.markdown.find("| ours + true unobserved lamps and windows |"),
               std::string::npos)
