@@ -274,6 +274,53 @@ TEST_F(TrainerTest, PretrainingTheLampCellsComesBeforeAFreshRunOnly) {
     EXPECT_THROW(plain.validate(), InputError);
 }
 
+TEST_F(TrainerTest, EachPartOfTheNetworkStepsAtItsOwnRate) {
+    // One Adam step moves no weight by more than about its learning rate (at most 1.001 times
+    // it at the second step, whatever the gradients). With a pretrained classifier, the photo
+    // encoder and classifier train at 10 times the rate, the rest of the emitter head at 100
+    // times, and the rest of the network at the rate itself: each group's largest change over
+    // the second step lies at or below its own rate and, for groups of many weights, well
+    // above the rate of the group below.
+    TrainOptions o = options("lighthouse_trainer_rates");
+    NetConfig config = test::tinyHdrConfig();
+    config.emitters = 3;
+    config.emitterPhoto = config.emitterPhotoCells = true;
+    o.configOverride = config;
+    o.pretrainLampCellEpochs = 1;
+    o.emitterCellWeight = 1.0;
+    o.learningRate = 1e-4;
+    o.iterations = 10;  // the rate drops tenfold only at iteration 8
+    o.stopAfter = 1;
+    o.averageDecay = 0.0;
+    o.halfModel = false;
+    std::ostringstream log;
+    train(o, log);
+    const LighthouseNet first = loadModel(o.out, torch::Device(torch::kCPU));
+    train(o, log);  // resumes: the second step, with Adam's state restored
+    ASSERT_NE(log.str().find("resuming"), std::string::npos) << log.str();
+    const LighthouseNet second = loadModel(o.out, torch::Device(torch::kCPU));
+    double trunk = 0, photo = 0, head = 0;
+    const auto after = second->named_parameters();
+    for (const auto& p : first->named_parameters()) {
+        const double change = (p.value() - after[p.key()]).abs().max().item<double>();
+        const std::string& name = p.key();
+        double& group = name.rfind("emitter_head.photo_encoder.", 0) == 0 ||
+                                name.rfind("emitter_head.photo_cells.", 0) == 0
+                            ? photo
+                        : name.rfind("emitter_head.", 0) == 0 ? head
+                                                              : trunk;
+        group = std::max(group, change);
+    }
+    const double lr = o.learningRate, margin = 1.01;
+    EXPECT_LE(trunk, margin * lr);
+    EXPECT_GT(trunk, 0.3 * lr);
+    EXPECT_LE(photo, margin * 10 * lr);
+    EXPECT_GT(photo, 3 * lr);
+    EXPECT_LE(head, margin * 100 * lr);
+    EXPECT_GT(head, 30 * lr);
+    removeOutputs(o);
+}
+
 TEST_F(TrainerTest, TheViewHdrWeightSteersTraining) {
     // The tiny set's examples carry tgt.exr: with the HDR view loss on, the MPI's gradients
     // differ, so do the weights, and the log names the term; a negative weight is refused.
