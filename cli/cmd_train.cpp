@@ -150,6 +150,10 @@ void addTrainCommand(CLI::App& app, const int& threads) {
                     "divergence (nats) of its distribution over level 0's cells from the cells "
                     "of the example's true lamps and windows (scene.json); 0: off")
         ->capture_default_str();
+    cmd->add_flag("--lamp-cells-unseen", o->lampCellsUnseenOnly,
+                  "The lamp cells (of --emitter-cell-weight and --pretrain-lamp-cells) name only "
+                  "the lamps and windows the reference photo does not show (centre behind the "
+                  "camera or outside the image)");
     cmd->add_option("--emitter-light-weight", o->emitterLightWeight,
                     "With an emitter head: weight of the error of the irradiance its lamps send "
                     "to each training envmap's point (per colour, on the six axis normals, as "

@@ -77,16 +77,38 @@ torch::Tensor lampCentresOfScene(const std::string& sceneJson) {
     return torch::tensor(centres).reshape({-1, 3});
 }
 
-LampCellExample loadLampCellExample(const std::string& directory, const NetConfig& config,
-                                    bool& ok) {
+torch::Tensor lampsOutsideView(const torch::Tensor& centres, const PinholeCamera& camera) {
+    if (!centres.defined()) return {};
+    const auto cpu = centres.to(torch::kCPU, torch::kFloat64).contiguous();
+    std::vector<int64_t> outside;
+    for (int64_t i = 0; i < cpu.size(0); ++i) {
+        const Vec3d world{cpu[i][0].item<double>(), cpu[i][1].item<double>(),
+                          cpu[i][2].item<double>()};
+        const Vec3d cam = camera.worldToCamera(world);
+        bool shown = cam.z() > 0;
+        if (shown) {
+            const Vec3d pixel = camera.cameraToPixel(cam);
+            shown = pixel.x() >= 0 && pixel.x() < camera.width && pixel.y() >= 0 &&
+                    pixel.y() < camera.height;
+        }
+        if (!shown) outside.push_back(i);
+    }
+    if (outside.empty()) return {};
+    return centres.index_select(0, torch::tensor(outside).to(centres.device()));
+}
+
+LampCellExample loadLampCellExample(const std::string& directory, const NetConfig& config, bool& ok,
+                                    bool unseenOnly) {
     const fs::path dir(directory);
     LampCellExample e;
     ok = false;
     if (!fs::is_regular_file(dir / dataset::kScene)) return e;
-    const torch::Tensor lamps = lampCentresOfScene((dir / dataset::kScene).string());
+    torch::Tensor lamps = lampCentresOfScene((dir / dataset::kScene).string());
     if (!lamps.defined()) return e;
     const CamerasFile cameras = loadCamerasFile((dir / dataset::kCameras).string());
     if (!cameras.far) throw FileError((dir / dataset::kCameras).string() + ": no far depth");
+    if (unseenOnly) lamps = lampsOutsideView(lamps, cameras.ref);
+    if (!lamps.defined()) return e;
     e.photo = imageToTensor(resizeImage(readImage((dir / dataset::viewPng("ref")).string()),
                                         config.width, config.height));
     // As the pipeline gives it to the head (LighthouseNetImpl::run).

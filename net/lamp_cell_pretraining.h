@@ -9,6 +9,7 @@
 // axis is the photo's rightward axis).
 #pragma once
 
+#include "core/camera.h"
 #include "net/emitter_head.h"
 #include "net/torch_pch.h"
 
@@ -41,11 +42,18 @@ torch::Tensor lampCellTarget(const torch::Tensor& lamps, double far, int cellsPe
 // scene.json, [M, 3]; an undefined tensor if it has none. Throws FileError if unreadable.
 torch::Tensor lampCentresOfScene(const std::string& sceneJson);
 
+// The rows of `centres` [M, 3] (metres, the camera's frame: OpenCV axes, +z forward) that the
+// photo of `camera` does not show: behind it or projecting outside its image. Only the centre
+// is tested, and nothing is occluded. An undefined tensor if the photo shows them all.
+torch::Tensor lampsOutsideView(const torch::Tensor& centres, const PinholeCamera& camera);
+
 // The example of one data-set folder (ref.png, cameras.json, scene.json), the photo resized
 // to the configuration's input size; `ok` false when the scene has no lamps or no scene.json.
-// Throws FileError for an unreadable file.
-LampCellExample loadLampCellExample(const std::string& directory, const NetConfig& config,
-                                    bool& ok);
+// With `unseenOnly` the cells name only the lamps and windows the photo does not show
+// (lampsOutsideView), and `ok` is false where it shows them all. Throws FileError for an
+// unreadable file.
+LampCellExample loadLampCellExample(const std::string& directory, const NetConfig& config, bool& ok,
+                                    bool unseenOnly = false);
 
 struct LampCellScores {
     double divergence = 0;  // mean KL(cells || p), nats

@@ -213,15 +213,17 @@ void pretrainPhotoClassifier(const TrainOptions& o, TrainingState& s,
         std::vector<LampCellExample> examples;
         for (const auto& dir : dirs) {
             bool ok = false;
-            LampCellExample e = loadLampCellExample(dir, s.net->config, ok);
+            LampCellExample e = loadLampCellExample(dir, s.net->config, ok, o.lampCellsUnseenOnly);
             if (ok) examples.push_back(std::move(e));
         }
         return examples;
     };
     const std::vector<LampCellExample> training = load(trainDirs), heldOut = load(heldOutDirs);
     if (training.empty())
-        throw InputError("--pretrain-lamp-cells needs scenes with lamps in scene.json; '" + o.data +
-                         "' has none");
+        throw InputError(std::string("--pretrain-lamp-cells needs scenes with lamps in "
+                                     "scene.json") +
+                         (o.lampCellsUnseenOnly ? " that the photo does not show" : "") + "; '" +
+                         o.data + "' has none");
     LampCellPretraining options;
     options.epochs = o.pretrainLampCellEpochs;
     options.seed = o.seed;
@@ -514,7 +516,11 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
         const torch::Tensor centres = lampCentresOfScene((dir / dataset::kScene).string());
         if (centres.defined()) {
             p.lampCentres = centres.to(device);
-            p.lampCells = lampCellTarget(centres, *ex.cameras.far, kEmitterCellsPerSide).to(device);
+            const torch::Tensor cellLamps =
+                o.lampCellsUnseenOnly ? lampsOutsideView(centres, ex.cameras.ref) : centres;
+            if (cellLamps.defined())
+                p.lampCells =
+                    lampCellTarget(cellLamps, *ex.cameras.far, kEmitterCellsPerSide).to(device);
         }
     }
     if (fs::is_regular_file(dir / dataset::kOracle)) {
@@ -726,7 +732,8 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
                  << " x squared distance to the nearest true lamp or window (scene.json)";
     if (o.emitterCellWeight > 0)
         progress << "; emitter head also " << o.emitterCellWeight
-                 << " x divergence of its cells from the true lamps' and windows' (scene.json)";
+                 << " x divergence of its cells from the true lamps' and windows' (scene.json)"
+                 << (o.lampCellsUnseenOnly ? ", those the photo does not show" : "");
     if (o.emitterLightWeight > 0)
         progress << "; emitter head also " << o.emitterLightWeight
                  << " x error of its lamps' axis irradiance against the envmaps' unobserved "

@@ -126,6 +126,11 @@ struct TrainOptions {
     // lamps and windows (scene.json). Where the position loss teaches the mean of where lamps
     // may be, this keeps the likely places apart. 0: off.
     double emitterCellWeight = 0.0;
+    // The lamp cells (the cell loss's and the pretraining's targets) name only the lamps and
+    // windows the reference photo does not show (net/lamp_cell_pretraining.h lampsOutsideView):
+    // those the photo shows are in the MPI already, and a classifier trained on all of them
+    // peaks on the visible ones. Examples whose photo shows them all get no cell target.
+    bool lampCellsUnseenOnly = false;
     // Weight of the emitter light loss (net/emitter_light.h emitterLightLoss) on the emitter
     // head's lamps: their axis irradiance per colour at each training envmap's point, as small
     // sources pruned as predict prunes, against that of the envmap's unobserved highlights

@@ -1,8 +1,8 @@
 // Pretraining of a "+cells" emitter head's photo classifier: the cells a scene's lamps fall in
-// (known values, mirrored, clamped, level 0's side capped at 40 m), a classifier that learns
-// which side of the photo is lit tells the held-out photos' lamps apart where the training
-// distribution cannot, keeping its best held-out epoch, and it leaves the rest of the head
-// alone.
+// (known values, mirrored, clamped, level 0's side capped at 40 m), which of them a photo does
+// not show, a classifier that learns which side of the photo is lit tells the held-out photos'
+// lamps apart where the training distribution cannot, keeping its best held-out epoch, and it
+// leaves the rest of the head alone.
 #include "net/lamp_cell_pretraining.h"
 
 #include "core/errors.h"
@@ -34,6 +34,33 @@ TEST(LampCellTarget, EachLampPutsItsShareOnTheCellItFallsIn) {
     const auto far = lampCellTarget(torch::tensor({4.f, 0.f, 0.f}).reshape({1, 3}), 30.0, 8);
     EXPECT_EQ(far[(4 * 8 + 4) * 8 + 4].item<float>(), 1.0f);
     EXPECT_THROW(lampCellTarget(torch::zeros({0, 3}), 4.0, 8), InputError);
+}
+
+TEST(LampsOutsideView, KeepsTheLampsThePhotoDoesNotShow) {
+    // A 100x80 camera of focal 50 px at the origin looking down +z: (0, 0, 2) projects to its
+    // centre, (3, 0, 2) to x = 125 (outside), (0, 0, -2) lies behind it, and (0.9, 0, 1) to
+    // x = 95 (inside, near the right edge).
+    PinholeCamera camera;
+    camera.width = 100;
+    camera.height = 80;
+    camera.fx = camera.fy = 50;
+    camera.cx = 50;
+    camera.cy = 40;
+    const auto lamps = torch::tensor({0.f, 0.f, 2.f, 3.f, 0.f, 2.f, 0.f, 0.f, -2.f, 0.9f, 0.f, 1.f})
+                           .reshape({4, 3});
+    const auto outside = lampsOutsideView(lamps, camera);
+    ASSERT_TRUE(outside.defined());
+    ASSERT_EQ(outside.size(0), 2);
+    EXPECT_TRUE(torch::equal(outside[0], lamps[1]));
+    EXPECT_TRUE(torch::equal(outside[1], lamps[2]));
+    // Turned half a turn about y, the camera sees the lamp behind it and not the others.
+    camera.rotation = Mat3d(-1, 0, 0, 0, 1, 0, 0, 0, -1);
+    const auto turned = lampsOutsideView(lamps, camera);
+    ASSERT_EQ(turned.size(0), 3);
+    EXPECT_TRUE(torch::equal(turned[2], lamps[3]));
+    // Every lamp shown: nothing left; no lamps: nothing.
+    EXPECT_FALSE(lampsOutsideView(lamps.narrow(0, 2, 1), camera).defined());
+    EXPECT_FALSE(lampsOutsideView(torch::Tensor(), camera).defined());
 }
 
 // A photo lit on its left or right half; the lamp is in cell x 1 or (mirrored) x 6, y 0, z 4.
