@@ -44,7 +44,6 @@ struct PredictOptions {
     int mantissaBits = 0;                // 0: values as the network gives them
     float pruneAlpha = -1;               // the model's (net/predictor.h)
     bool shell = false;                  // collapse the volume into a shell (net/predictor.h)
-    bool mirrorAverage = false;          // average with the mirrored pair's (net/predictor.h)
     double highlightGain = -1;           // the model's (net/predictor.h)
     double highlightKnee = 1;            // where the gain starts (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
@@ -116,7 +115,6 @@ net::PredictorOptions predictorOptions(const PredictOptions& o, int threads) {
     po.threads = threads;
     po.pruneAlpha = o.pruneAlpha;
     po.shell = o.shell;
-    po.mirrorAverage = o.mirrorAverage;
     po.highlightGain = o.highlightGain;
     po.highlightKnee = o.highlightKnee;
     return po;
@@ -302,9 +300,6 @@ void addPredictCommand(CLI::App& app, const int& threads) {
         "Batch: K/N, predict only pair i with i mod N = K (0-based) and write a shard record; "
         "`lighthouse merge OUT` writes predictions.json of all shards");
     cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
-    cmd->add_flag("--mirror-average", o->mirrorAverage,
-                  "Also predict the pair seen in a mirror (both photos flipped left to right) "
-                  "and average the two volumes: twice the network's time");
     cmd->add_flag("--shell", o->shell,
                   "Collapse the predicted medium into an opaque shell as seen from the middle of "
                   "the room: envmaps render several times faster, at a small loss of accuracy "

@@ -1,7 +1,6 @@
 #include "net/predictor.h"
 
 #include "core/errors.h"
-#include "image/image_orientation.h"
 #include "net/device.h"
 #include "net/highlight_gain.h"
 #include "net/lighthouse_net.h"
@@ -81,7 +80,6 @@ struct Predictor::Impl {
     LighthouseNet net{nullptr};
     float pruneAlpha = kDefaultPruneAlpha;
     bool shell = false;
-    bool mirrorAverage = false;
     double highlightGain = 1.0;
     double highlightKnee = 1.0;
 };
@@ -104,7 +102,6 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
     impl_->pruneAlpha =
         options.pruneAlpha >= 0 ? options.pruneAlpha : defaultPruneAlpha(impl_->net->config);
     impl_->shell = options.shell;
-    impl_->mirrorAverage = options.mirrorAverage;
     impl_->highlightGain =
         options.highlightGain >= 0 ? options.highlightGain : impl_->net->config.highlightGain;
     impl_->highlightKnee = options.highlightKnee;
@@ -119,49 +116,6 @@ double Predictor::highlightKnee() const { return impl_->highlightKnee; }
 Predictor::~Predictor() = default;
 
 const NetConfig& Predictor::config() const { return impl_->net->config; }
-
-namespace {
-
-// The pair as a mirror shows it (world x -> -x): both photos flipped left to right and each
-// camera reflected, R -> M R M and p -> M p with M = diag(-1, 1, 1), so the photos' pixels
-// still project where they should (cx -> width - cx).
-StereoPair mirroredPair(const StereoPair& pair) {
-    constexpr int kExifMirrorLeftRight = 2;  // image/image_orientation.h's orientation 2
-    const Mat3d m(-1, 0, 0, 0, 1, 0, 0, 0, 1);
-    const auto reflect = [&](PinholeCamera c) {
-        c.cx = c.width - c.cx;
-        c.rotation = m * c.rotation * m;
-        c.position = Vec3d(-c.position.x(), c.position.y(), c.position.z());
-        return c;
-    };
-    StereoPair mirrored = pair;
-    mirrored.ref = applyOrientation(pair.ref, kExifMirrorLeftRight);
-    mirrored.src = applyOrientation(pair.src, kExifMirrorLeftRight);
-    mirrored.cameras.ref = reflect(pair.cameras.ref);
-    mirrored.cameras.src = reflect(*pair.cameras.src);
-    return mirrored;
-}
-
-// The mean of two predictions of the same layout, the second predicted in the mirror: flipped
-// back along x (every level is symmetric about x = 0), then per voxel the mean alpha and the
-// alpha-weighted mean colour (the plain mean where both are empty).
-std::vector<torch::Tensor> averageWithMirrored(const std::vector<torch::Tensor>& cubes,
-                                               const std::vector<torch::Tensor>& mirrored) {
-    std::vector<torch::Tensor> out;
-    for (size_t k = 0; k < cubes.size(); ++k) {
-        const auto a = cubes[k], b = torch::flip(mirrored[k], {4});
-        const auto alphaA = a.narrow(1, 3, 1), alphaB = b.narrow(1, 3, 1);
-        const auto alphaSum = alphaA + alphaB;
-        const auto weighted =
-            (a.narrow(1, 0, 3) * alphaA + b.narrow(1, 0, 3) * alphaB) / alphaSum.clamp_min(1e-12);
-        const auto plain = 0.5 * (a.narrow(1, 0, 3) + b.narrow(1, 0, 3));
-        out.push_back(
-            torch::cat({torch::where(alphaSum > 1e-12, weighted, plain), 0.5 * alphaSum}, 1));
-    }
-    return out;
-}
-
-}  // namespace
 
 Prediction Predictor::predict(const StereoPair& pair) const {
     validateStereoPair(pair);
@@ -180,14 +134,7 @@ Prediction Predictor::predict(const StereoPair& pair) const {
         makePairInputs(pair.ref, pair.src, cams.ref, *cams.src, result.range.near, result.range.far,
                        config, impl_->device);
     torch::NoGradGuard noGrad;
-    PipelineOutput out = impl_->net->run(inputs, true);
-    if (impl_->mirrorAverage) {
-        const StereoPair mirrored = mirroredPair(pair);
-        const PairInputs mirroredInputs =
-            makePairInputs(mirrored.ref, mirrored.src, mirrored.cameras.ref, *mirrored.cameras.src,
-                           result.range.near, result.range.far, config, impl_->device);
-        out.cubes = averageWithMirrored(out.cubes, impl_->net->run(mirroredInputs, true).cubes);
-    }
+    const PipelineOutput out = impl_->net->run(inputs, true);
     // The gain on the cubes, as training applies it, before they become grids.
     result.volume = cubesToVolume(
         expandHighlightsInCubes(out.cubes, impl_->highlightGain, impl_->highlightKnee),

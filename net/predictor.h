@@ -78,11 +78,6 @@ struct PredictorOptions {
     // Collapse the completed volume into an opaque shell seen from defaultShellCentre
     // (render/radial_shell.h): the same envmap from there, far fewer voxels for rays to cross.
     bool shell = false;
-    // Predict the pair and its mirror image (both photos flipped left to right, the cameras
-    // reflected, so the second view sits on the other side), flip the second volume back and
-    // average the two (alpha, and colour weighted by alpha): twice the network's time, for an
-    // invention that does not depend on which side of the photo a cue was seen.
-    bool mirrorAverage = false;
     // What the completed volume holds above white, times this (net/highlight_gain.h), before
     // any shell is made; 1: as the network predicts it. Negative: the gain the model was
     // trained under (train --highlight-gain), else 1.
