@@ -46,8 +46,9 @@ void addEvalDiffCommand(CLI::App& app) {
         "eval-diff",
         "Paired difference B - A of two evals of the same envmaps, per metric, with its standard "
         "error (Markdown)");
-    cmd->add_option("a", o->a, "The first eval: its output folder or its metrics.csv")->required();
-    cmd->add_option("b", o->b, "The second eval, subtracted from: B - A")->required();
+    cmd->add_option("eval_a", o->a, "The first eval (A): its output folder or its metrics.csv")
+        ->required();
+    cmd->add_option("eval_b", o->b, "The second eval (B): the differences are B - A")->required();
     cmd->add_option("--method", o->method,
                     "The method's rows to pair (metrics.csv's third column: \"ours\", \"ours, MPI "
                     "only\", \"single global envmap\", \"oracle\")")
