@@ -52,6 +52,16 @@ protected:
         o.averageDecay = 0.5;  // an average that moves within 4 steps, so resuming must restore it
         return o;
     }
+    // options(name) for a model whose emitter head has the pretrainable photo classifier
+    // ("+emitters+photo+cells", 3 lamps).
+    TrainOptions photoCellsOptions(const std::string& name) const {
+        TrainOptions o = options(name);
+        NetConfig config = test::tinyHdrConfig();
+        config.emitters = 3;
+        config.emitterPhoto = config.emitterPhotoCells = true;
+        o.configOverride = config;
+        return o;
+    }
     static void removeOutputs(const TrainOptions& o) {
         for (const std::string suffix : {"", ".csv", ".png", ".checkpoint"})
             fs::remove(o.out + suffix);
@@ -250,11 +260,7 @@ TEST_F(TrainerTest, PretrainingTheLampCellsComesBeforeAFreshRunOnly) {
     // A "+cells" run pretrains the head's photo classifier on the 2 training photos (one of the
     // 3 is held out) before its first step; resumed from its checkpoint it does not again. A
     // configuration without the classifier is refused.
-    TrainOptions o = options("lighthouse_trainer_lamp_cells");
-    NetConfig config = test::tinyHdrConfig();
-    config.emitters = 3;
-    config.emitterPhoto = config.emitterPhotoCells = true;
-    o.configOverride = config;
+    TrainOptions o = photoCellsOptions("lighthouse_trainer_lamp_cells");
     o.iterations = 1;
     o.pretrainLampCellEpochs = 2;
     std::ostringstream first, second;
@@ -281,11 +287,7 @@ TEST_F(TrainerTest, EachPartOfTheNetworkStepsAtItsOwnRate) {
     // times, and the rest of the network at the rate itself: each group's largest change over
     // the second step lies at or below its own rate and, for groups of many weights, well
     // above the rate of the group below.
-    TrainOptions o = options("lighthouse_trainer_rates");
-    NetConfig config = test::tinyHdrConfig();
-    config.emitters = 3;
-    config.emitterPhoto = config.emitterPhotoCells = true;
-    o.configOverride = config;
+    TrainOptions o = photoCellsOptions("lighthouse_trainer_rates");
     o.pretrainLampCellEpochs = 1;
     o.emitterCellWeight = 1.0;
     o.learningRate = 1e-4;
