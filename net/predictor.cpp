@@ -1,12 +1,9 @@
 #include "net/predictor.h"
 
 #include "core/errors.h"
-#include "image/image_io.h"
-#include "image/resample.h"
 #include "net/device.h"
 #include "net/highlight_gain.h"
 #include "net/lighthouse_net.h"
-#include "net/tensor_image.h"
 #include "net/volume_export.h"
 #include "net/volume_render.h"
 #include "render/radial_shell.h"
@@ -83,8 +80,6 @@ struct Predictor::Impl {
     LighthouseNet net{nullptr};
     float pruneAlpha = kDefaultPruneAlpha;
     bool shell = false;
-    bool collapseClipped = false;
-    std::string clippedRadianceFrom;
     double highlightGain = 1.0;
     double highlightKnee = 1.0;
 };
@@ -107,8 +102,6 @@ Predictor::Predictor(const PredictorOptions& options) : impl_(std::make_unique<I
     impl_->pruneAlpha =
         options.pruneAlpha >= 0 ? options.pruneAlpha : defaultPruneAlpha(impl_->net->config);
     impl_->shell = options.shell;
-    impl_->collapseClipped = options.collapseClipped;
-    impl_->clippedRadianceFrom = options.clippedRadianceFrom;
     impl_->highlightGain =
         options.highlightGain >= 0 ? options.highlightGain : impl_->net->config.highlightGain;
     impl_->highlightKnee = options.highlightKnee;
@@ -137,20 +130,9 @@ Prediction Predictor::predict(const StereoPair& pair) const {
     }
     const NetConfig& config = impl_->net->config;
     const auto start = std::chrono::steady_clock::now();
-    PairInputs inputs = makePairInputs(pair.ref, pair.src, cams.ref, *cams.src, result.range.near,
-                                       result.range.far, config, impl_->device);
-    inputs.collapseClipped = impl_->collapseClipped;
-    inputs.injectAfterCompletion = std::getenv("LH_INJECT_AFTER") != nullptr;
-    inputs.clippedAtBorderDepth = std::getenv("LH_BORDER_DEPTH") != nullptr;
-    if (const char* depth = std::getenv("LH_CLIPPED_DEPTH"))
-        inputs.clippedDepth =
-            imageToTensor(resizeImage(readImage(depth), config.width, config.height))
-                .narrow(1, 0, 1)
-                .to(impl_->device);
-    if (!impl_->clippedRadianceFrom.empty())
-        inputs.clippedRadiance = imageToTensor(resizeImage(readImage(impl_->clippedRadianceFrom),
-                                                           config.width, config.height))
-                                     .to(impl_->device);
+    const PairInputs inputs =
+        makePairInputs(pair.ref, pair.src, cams.ref, *cams.src, result.range.near, result.range.far,
+                       config, impl_->device);
     torch::NoGradGuard noGrad;
     const PipelineOutput out = impl_->net->run(inputs, true);
     // The gain on the cubes, as training applies it, before they become grids.
