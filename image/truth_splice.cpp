@@ -1,4 +1,5 @@
 #include "image/truth_splice.h"
+#include <cstdlib>
 
 #include "core/errors.h"
 #include "image/luminance.h"
@@ -68,7 +69,10 @@ ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPar
                 take = isLampOrWindow(t);
                 break;
             case TruthPart::ObservedLampsAndWindows:
-                take = observed[i] != 0 && isLampOrWindow(t);
+                take = observed[i] != 0 &&
+                       rec709Luminance(t) > (std::getenv("LH_SPLICE_MIN")
+                                                 ? std::atof(std::getenv("LH_SPLICE_MIN"))
+                                                 : 1.0);
                 break;
             case TruthPart::UnobservedLampsAndWindows:
             case TruthPart::UnobservedLampsAndWindowsTurned30:
