@@ -35,7 +35,6 @@ void addEvalCommand(CLI::App& app, const int& threads) {
                     "As predict's --prune-alpha (default: the model's, as predict's)")
         ->check(CLI::Range(0.0f, 1.0f));
     cmd->add_flag("--shell", o->shell, "As predict's --shell");
-    cmd->add_flag("--collapse-clipped", o->collapseClipped, "As predict's --collapse-clipped");
     cmd->add_option("--highlight-gain", o->highlightGain,
                     "As predict's --highlight-gain (default: the model's, as predict's)")
         ->check(CLI::Range(1.0, net::kMaxHighlightGain));

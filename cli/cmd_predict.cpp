@@ -41,11 +41,9 @@ struct PredictOptions {
     bool alsoPng = false;
     float exposure = 1.f;
     bool half = false;
-    int mantissaBits = 0;          // 0: values as the network gives them
-    float pruneAlpha = -1;         // the model's (net/predictor.h)
-    bool shell = false;            // collapse the volume into a shell (net/predictor.h)
-    bool collapseClipped = false;  // the MPI at clipped pixels on one plane
-    std::string clippedRadianceFrom;
+    int mantissaBits = 0;                // 0: values as the network gives them
+    float pruneAlpha = -1;               // the model's (net/predictor.h)
+    bool shell = false;                  // collapse the volume into a shell (net/predictor.h)
     double highlightGain = -1;           // the model's (net/predictor.h)
     double highlightKnee = 1;            // where the gain starts (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
@@ -117,8 +115,6 @@ net::PredictorOptions predictorOptions(const PredictOptions& o, int threads) {
     po.threads = threads;
     po.pruneAlpha = o.pruneAlpha;
     po.shell = o.shell;
-    po.collapseClipped = o.collapseClipped;
-    po.clippedRadianceFrom = o.clippedRadianceFrom;
     po.highlightGain = o.highlightGain;
     po.highlightKnee = o.highlightKnee;
     return po;
@@ -304,10 +300,6 @@ void addPredictCommand(CLI::App& app, const int& threads) {
         "Batch: K/N, predict only pair i with i mod N = K (0-based) and write a shard record; "
         "`lighthouse merge OUT` writes predictions.json of all shards");
     cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
-    cmd->add_option("--clipped-radiance-from", o->clippedRadianceFrom, "analysis");
-    cmd->add_flag("--collapse-clipped", o->collapseClipped,
-                  "Put the MPI's alpha at each clipped photo pixel on the one plane that shows "
-                  "it most (the same photo from the camera, a lamp at one depth)");
     cmd->add_flag("--shell", o->shell,
                   "Collapse the predicted medium into an opaque shell as seen from the middle of "
                   "the room: envmaps render several times faster, at a small loss of accuracy "

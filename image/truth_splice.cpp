@@ -1,5 +1,4 @@
 #include "image/truth_splice.h"
-#include <cstdlib>
 
 #include "core/errors.h"
 #include "image/luminance.h"
@@ -69,10 +68,7 @@ ImageRGB spliceTruth(const ImageRGB& prediction, const ImageRGB& truth, TruthPar
                 take = isLampOrWindow(t);
                 break;
             case TruthPart::ObservedLampsAndWindows:
-                take = observed[i] != 0 &&
-                       rec709Luminance(t) > (std::getenv("LH_SPLICE_MIN")
-                                                 ? std::atof(std::getenv("LH_SPLICE_MIN"))
-                                                 : 1.0);
+                take = observed[i] != 0 && isLampOrWindow(t);
                 break;
             case TruthPart::UnobservedLampsAndWindows:
             case TruthPart::UnobservedLampsAndWindowsTurned30:

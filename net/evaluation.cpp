@@ -85,7 +85,6 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     po.threads = o.threads;
     if (o.pruneAlpha >= 0) po.pruneAlpha = o.pruneAlpha;
     po.shell = o.shell;
-    po.collapseClipped = o.collapseClipped;
     po.highlightGain = o.highlightGain;
     po.highlightKnee = o.highlightKnee;
     const Predictor predictor(po);

@@ -34,11 +34,10 @@ struct EvalOptions {
     std::string hdriDir;  // panoramas for the oracle's windows
     std::string device = "cpu";
     int threads = 0;
-    float pruneAlpha = -1;         // predict's --prune-alpha; negative: the model's (as predict's)
-    bool shell = false;            // predict's --shell
-    bool collapseClipped = false;  // predict's --collapse-clipped
-    double highlightGain = -1;     // predict's --highlight-gain; negative: the model's
-    double highlightKnee = 1;      // predict's --highlight-knee
+    float pruneAlpha = -1;      // predict's --prune-alpha; negative: the model's (as predict's)
+    bool shell = false;         // predict's --shell
+    double highlightGain = -1;  // predict's --highlight-gain; negative: the model's
+    double highlightKnee = 1;   // predict's --highlight-knee
     // Also score "ours" with one part of the truth put in (image/truth_splice.h): how much a
     // perfect MPI, a perfect completion or perfect lamps and windows alone would gain.
     // Not with shards.

@@ -1,7 +1,5 @@
 #include "net/lighthouse_net.h"
 
-#include <cstdlib>
-
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "image/resample.h"
@@ -180,127 +178,16 @@ PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) 
     const auto psv = planeSweepVolume(in.refEncoded, in.srcEncoded, in.ref, in.src, in.depths);
     const auto logAnchor = logColourAnchor(in.refLinear);
     result.mpi = predictMpi(psv, in.refLinear, logAnchor);
-    if (in.collapseClipped) result.mpi = collapseClippedMpiColumns(result.mpi, in.refLinear);
-    if (in.clippedDepth.defined()) {
-        // Each clipped column opaque on the plane nearest its true depth (in disparity).
-        const auto clipped = (std::get<0>(in.refLinear.max(1, true)) >= 0.99).unsqueeze(2);
-        std::vector<float> inverse;
-        for (double d : in.depths) inverse.push_back(float(1.0 / d));
-        const auto planes = torch::tensor(inverse).to(result.mpi.device()).view({1, 1, -1, 1, 1});
-        const auto truth = (1.0 / in.clippedDepth.clamp_min(1e-3)).unsqueeze(2);
-        const auto nearest = (planes - truth).abs().argmin(2, true);
-        const auto alpha = result.mpi.narrow(1, 3, 1);
-        const auto onPlane = torch::zeros_like(alpha).scatter_(2, nearest, 1.0);
-        const auto colour = result.mpi.narrow(1, 0, 3);
-        // The column's colour as the camera sees it, on every plane.
-        const auto clear = (1 - alpha).flip({2});
-        const auto inFront = torch::cat({torch::ones_like(clear.narrow(2, 0, 1)),
-                                         torch::cumprod(clear, 2).narrow(2, 0, clear.size(2) - 1)},
-                                        2)
-                                 .flip({2});
-        const auto weight = alpha * inFront;
-        const auto seen = (colour * weight).sum(2, true) / weight.sum(2, true).clamp_min(1e-6);
-        const auto newMpi = torch::cat({seen.expand_as(colour), onPlane}, 1);
-        result.mpi = torch::where(clipped.expand_as(result.mpi), newMpi, result.mpi);
-    }
-    if (in.clippedAtBorderDepth)
-        result.mpi = clippedAtBorderDepth(result.mpi, in.refLinear, in.depths);
-    if (std::getenv("LH_CLEAR_CLIPPED")) {
-        // Analysis: the clipped columns emptied (alpha 0), so nothing the MPI drew there stands
-        // in front of an observed-lamp blob.
-        const auto clipped = (std::get<0>(in.refLinear.max(1, true)) >= 0.99).unsqueeze(2);
-        const auto alpha = result.mpi.narrow(1, 3, 1);
-        result.mpi = torch::cat(
-            {result.mpi.narrow(1, 0, 3), torch::where(clipped, torch::zeros_like(alpha), alpha)},
-            1);
-    }
-    torch::Tensor clippedMpi = result.mpi;
-    if (in.clippedRadiance.defined()) {
-        const auto clipped = (std::get<0>(in.refLinear.max(1, true)) >= 0.99).unsqueeze(2);
-        const auto truth = in.clippedRadiance.unsqueeze(2).expand_as(result.mpi.narrow(1, 0, 3));
-        result.mpi =
-            torch::cat({torch::where(clipped.expand_as(truth), truth, result.mpi.narrow(1, 0, 3)),
-                        result.mpi.narrow(1, 3, 1)},
-                       1);
-    }
     for (int k = 0; k < in.layout.levels; ++k)
         result.mpiCubes.push_back(resampleMpiToLevel(result.mpi, in.depths, in.ref, in.layout, k,
                                                      config.hdr ? kMaxMpiRadiance : 1.0));
-    if (runCompletion && in.injectAfterCompletion && in.clippedRadiance.defined()) {
-        std::vector<torch::Tensor> clippedCubes;
-        for (int k = 0; k < in.layout.levels; ++k)
-            clippedCubes.push_back(resampleMpiToLevel(clippedMpi, in.depths, in.ref, in.layout, k,
-                                                      config.hdr ? kMaxMpiRadiance : 1.0));
-        result.cubes = complete(clippedCubes, in.layout, logAnchor);
-        for (int k = 0; k < in.layout.levels; ++k) {
-            const auto excess = (result.mpiCubes[k] - clippedCubes[k]).narrow(1, 0, 3);
-            result.cubes[k] = torch::cat({(result.cubes[k].narrow(1, 0, 3) + excess).clamp_min(0),
-                                          result.cubes[k].narrow(1, 3, 1)},
-                                         1);
-        }
-    } else if (runCompletion)
-        result.cubes = complete(result.mpiCubes, in.layout, logAnchor);
+    if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout, logAnchor);
     if (runCompletion && emitterHead) {
         const auto photoLuminance = luminanceTensor(in.refLinear).mean().clamp_min(1e-3);
         result.emitters = emitterHead(result.cubes[0], in.layout, photoLuminance, in.refLinear);
         result.cubes = addEmitters(result.cubes, result.emitters, in.layout);
     }
     return result;
-}
-
-torch::Tensor collapseClippedMpiColumns(const torch::Tensor& mpi, const torch::Tensor& refLinear) {
-    const auto colour = mpi.narrow(1, 0, 3), alpha = mpi.narrow(1, 3, 1);  // [1, 1, D, H, W]
-    // Transmittance in front of each plane (the nearer planes come later along D).
-    const auto clear = (1 - alpha).flip({2});
-    const auto inFront = torch::cat({torch::ones_like(clear.narrow(2, 0, 1)),
-                                     torch::cumprod(clear, 2).narrow(2, 0, clear.size(2) - 1)},
-                                    2)
-                             .flip({2});
-    const auto weight = alpha * inFront;  // each plane's share of the pixel
-    const auto total = weight.sum(2, true);
-    const auto composited = (colour * weight).sum(2, true) / total.clamp_min(1e-6);
-    const auto strongest = weight.argmax(2, true);
-    const auto onPlane = torch::zeros_like(alpha).scatter_(2, strongest, torch::ones_like(total));
-    const auto collapsed = torch::cat({composited.expand_as(colour), onPlane * total}, 1);
-    const auto clipped =
-        (std::get<0>(refLinear.max(1, true)) >= 0.99).unsqueeze(2).expand_as(alpha);  // [1,1,D,H,W]
-    return torch::where(clipped.expand_as(mpi), collapsed, mpi);
-}
-
-torch::Tensor clippedAtBorderDepth(const torch::Tensor& mpi, const torch::Tensor& refLinear,
-                                   const std::vector<double>& depths) {
-    namespace F = torch::nn::functional;
-    const auto colour = mpi.narrow(1, 0, 3), alpha = mpi.narrow(1, 3, 1);  // [1, 1, D, H, W]
-    const auto clear = (1 - alpha).flip({2});
-    const auto inFront = torch::cat({torch::ones_like(clear.narrow(2, 0, 1)),
-                                     torch::cumprod(clear, 2).narrow(2, 0, clear.size(2) - 1)},
-                                    2)
-                             .flip({2});
-    const auto weight = alpha * inFront;
-    const auto total = weight.sum(2, true).clamp_min(1e-6);
-    std::vector<float> inverse;
-    for (double d : depths) inverse.push_back(float(1.0 / d));
-    const auto planes = torch::tensor(inverse).to(mpi.device()).view({1, 1, -1, 1, 1});
-    auto disparity = ((weight * planes).sum(2, true) / total).squeeze(2);  // [1, 1, H, W]
-    const auto clipped = std::get<0>(refLinear.max(1, true)) >= 0.99;      // [1, 1, H, W]
-    if (!clipped.any().item<bool>()) return mpi;
-    // Fill the clipped pixels' disparity inward from their unclipped borders.
-    auto known = (~clipped).to(torch::kFloat);
-    disparity = disparity * known;
-    const auto pool = F::AvgPool2dFuncOptions(3).stride(1).padding(1);
-    for (int step = 0; step < refLinear.size(2) + refLinear.size(3); ++step) {
-        const auto den = F::avg_pool2d(known, pool);
-        const auto num = F::avg_pool2d(disparity * known, pool);
-        const auto reached = (known < 0.5) & (den > 0);
-        if (!reached.any().item<bool>()) break;
-        disparity = torch::where(reached, num / den.clamp_min(1e-9), disparity);
-        known = torch::where(reached, torch::ones_like(known), known);
-    }
-    const auto nearest = (planes - disparity.unsqueeze(2)).abs().argmin(2, true);
-    const auto onPlane = torch::zeros_like(alpha).scatter_(2, nearest, 1.0);
-    const auto seen = (colour * weight).sum(2, true) / total;
-    const auto moved = torch::cat({seen.expand_as(colour), onPlane}, 1);
-    return torch::where(clipped.unsqueeze(2).expand_as(mpi), moved, mpi);
 }
 
 PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const PinholeCamera& refCamera,

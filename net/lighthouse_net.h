@@ -22,23 +22,7 @@ struct PairInputs {
     PinholeCamera ref, src;                // intrinsics of the resized images
     std::vector<double> depths;            // plane depths, far to near
     VolumeLayout layout;
-    // Inference only: collapse the MPI's alpha at the photo's clipped pixels into one plane
-    // (collapseClippedMpiColumns) before it is resampled onto the levels.
-    bool collapseClipped = false;
-    torch::Tensor clippedRadiance;  // analysis: [1, 3, H, W] the true radiance of clipped pixels
-    bool injectAfterCompletion = false;  // analysis
-    torch::Tensor clippedDepth;          // analysis: [1, 1, H, W] true z-depth, metres
-    bool clippedAtBorderDepth = false;
 };
-
-// The MPI [1, 4, D, H, W] (planes far to near) with each column whose photo pixel clips (some
-// channel of `refLinear` [1, 3, H, W] at or above 0.99) collapsed into the plane that
-// contributes most to it: there the column's total alpha and its composited colour, elsewhere
-// alpha 0. Seen from the reference camera the MPI draws the same photo; a lamp it spread over
-// several depths sits at one.
-torch::Tensor clippedAtBorderDepth(const torch::Tensor& mpi, const torch::Tensor& refLinear,
-                                   const std::vector<double>& depths);
-torch::Tensor collapseClippedMpiColumns(const torch::Tensor& mpi, const torch::Tensor& refLinear);
 
 struct PipelineOutput {
     torch::Tensor mpi;                    // [1, 4, D, H, W]: linear RGB, alpha

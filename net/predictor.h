@@ -78,10 +78,6 @@ struct PredictorOptions {
     // Collapse the completed volume into an opaque shell seen from defaultShellCentre
     // (render/radial_shell.h): the same envmap from there, far fewer voxels for rays to cross.
     bool shell = false;
-    // Collapse the MPI at the photo's clipped pixels into one plane each
-    // (net/lighthouse_net.h collapseClippedMpiColumns).
-    bool collapseClipped = false;
-    std::string clippedRadianceFrom;  // analysis: a linear EXR of the reference view
     // What the completed volume holds above white, times this (net/highlight_gain.h), before
     // any shell is made; 1: as the network predicts it. Negative: the gain the model was
     // trained under (train --highlight-gain), else 1.
