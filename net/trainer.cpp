@@ -84,6 +84,10 @@ void TrainOptions::validate() const {
         throw InputError("--emitter-light-weight must be in [0, 1000]");
     if (pretrainLampCellEpochs < 0 || pretrainLampCellEpochs > 1000)
         throw InputError("--pretrain-lamp-cells must be in [0, 1000] epochs");
+    if (lampCellsUnseenOnly && emitterCellWeight == 0 && pretrainLampCellEpochs == 0)
+        throw InputError(
+            "--lamp-cells-unseen changes the lamp cells of --emitter-cell-weight and "
+            "--pretrain-lamp-cells: give one of them too");
     if (!(closureWeight >= 0 && closureWeight <= 100))
         throw InputError("--closure-weight must be in [0, 100]");
     if (!(directAdversarialWeight >= 0 && directAdversarialWeight <= 10))

@@ -278,6 +278,13 @@ TEST_F(TrainerTest, PretrainingTheLampCellsComesBeforeAFreshRunOnly) {
     EXPECT_THROW(train(plain, second), InputError);
     plain.pretrainLampCellEpochs = -1;
     EXPECT_THROW(plain.validate(), InputError);
+    // Only the lamps the photo does not show: a change of the cells' targets, refused where
+    // no cells are trained.
+    plain.pretrainLampCellEpochs = 0;
+    plain.lampCellsUnseenOnly = true;
+    EXPECT_THROW(plain.validate(), InputError);
+    plain.emitterCellWeight = 1.0;
+    EXPECT_NO_THROW(plain.validate());
 }
 
 TEST_F(TrainerTest, EachPartOfTheNetworkStepsAtItsOwnRate) {
