@@ -1,8 +1,6 @@
 #include "net/predictor.h"
 
 #include "core/errors.h"
-#include "image/image_io.h"
-#include "image/luminance.h"
 #include "net/device.h"
 #include "net/highlight_gain.h"
 #include "net/lighthouse_net.h"
@@ -13,7 +11,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 namespace lh::net {
 
@@ -120,46 +117,6 @@ Predictor::~Predictor() = default;
 
 const NetConfig& Predictor::config() const { return impl_->net->config; }
 
-namespace {
-
-// Analysis: each clipped photo pixel whose true luminance is at least 2, put into every level
-// at its true 3D point (true z-depth) as an opaque voxel of its true radiance: the lamps the
-// photo shows with their true shape (a ceiling panel flat, not facing the camera).
-void splatObservedLamps(std::vector<torch::Tensor>& cubes, const VolumeLayout& layout,
-                        const ImageRGB& photo, const ImageRGB& truth, const ImageRGB& depth,
-                        const PinholeCamera& camera) {
-    std::vector<torch::Tensor> cpu;
-    for (const auto& c : cubes) cpu.push_back(c.to(torch::kCPU).contiguous().clone());
-    int splatted = 0;
-    for (int y = 0; y < photo.height; ++y)
-        for (int x = 0; x < photo.width; ++x) {
-            const float* p = photo.at(x, y);
-            if (std::max({p[0], p[1], p[2]}) < 0.99f) continue;
-            const float* t = truth.at(x, y);
-            if (rec709Luminance(t) < 2.0) continue;
-            const double z = depth.at(x, y)[0];
-            const Vec3d point((x + 0.5 - camera.cx) / camera.fx * z,
-                              (y + 0.5 - camera.cy) / camera.fy * z, z);
-            ++splatted;
-            for (int k = 0; k < layout.levels; ++k) {
-                const WorldBox box = layout.box(k);
-                if (!box.contains(point)) continue;
-                const double v = layout.voxelSize(k);
-                const int r = layout.resolution;
-                const int ix = std::min(r - 1, int((point.x() - box.min.x()) / v));
-                const int iy = std::min(r - 1, int((point.y() - box.min.y()) / v));
-                const int iz = std::min(r - 1, int((point.z() - box.min.z()) / v));
-                auto a = cpu[k].accessor<float, 5>();
-                for (int c = 0; c < 3; ++c) a[0][c][iz][iy][ix] = t[c];
-                a[0][3][iz][iy][ix] = 1.0f;
-            }
-        }
-    std::fprintf(stderr, "analysis: %d observed lamp pixels splatted\n", splatted);
-    for (size_t k = 0; k < cubes.size(); ++k) cubes[k] = cpu[k].to(cubes[k].device());
-}
-
-}  // namespace
-
 Prediction Predictor::predict(const StereoPair& pair) const {
     validateStereoPair(pair);
     Prediction result;
@@ -177,10 +134,7 @@ Prediction Predictor::predict(const StereoPair& pair) const {
         makePairInputs(pair.ref, pair.src, cams.ref, *cams.src, result.range.near, result.range.far,
                        config, impl_->device);
     torch::NoGradGuard noGrad;
-    PipelineOutput out = impl_->net->run(inputs, true);
-    if (const char* truthPath = std::getenv("LH_SPLAT_TRUTH"))
-        splatObservedLamps(out.cubes, inputs.layout, pair.ref, readImage(truthPath),
-                           readImage(std::getenv("LH_SPLAT_DEPTH")), cams.ref);
+    const PipelineOutput out = impl_->net->run(inputs, true);
     // The gain on the cubes, as training applies it, before they become grids.
     result.volume = cubesToVolume(
         expandHighlightsInCubes(out.cubes, impl_->highlightGain, impl_->highlightKnee),
