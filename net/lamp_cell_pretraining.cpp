@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <numeric>
@@ -110,24 +109,8 @@ LampCellExample loadLampCellExample(const std::string& directory, const NetConfi
     if (!cameras.far) throw FileError((dir / dataset::kCameras).string() + ": no far depth");
     if (unseenOnly) lamps = lampsOutsideView(lamps, cameras.ref);
     if (!lamps.defined()) return e;
-    // Analysis: LH_PRETRAIN_EXR=1 reads the unclipped linear reference view instead.
-    const std::string view =
-        std::getenv("LH_PRETRAIN_EXR") ? dataset::viewExr("ref") : dataset::viewPng("ref");
-    e.photo =
-        imageToTensor(resizeImage(readImage((dir / view).string()), config.width, config.height));
-    if (const char* ceiling = std::getenv("LH_PRETRAIN_EXR_CLIP"))
-        e.photo = e.photo.clamp(0.0, std::atof(ceiling));  // analysis: the unclipped view, capped
-    if (const char* meter = std::getenv("LH_PRETRAIN_METER")) {
-        // Analysis: the unclipped view exposed so that at most this share of its pixels clip
-        // (some channel above 1), then clipped, as a camera metering for its highlights.
-        const auto hdr = imageToTensor(resizeImage(
-            readImage((dir / dataset::viewExr("ref")).string()), config.width, config.height));
-        const auto peak = std::get<0>(hdr.max(1)).flatten();
-        const double q = std::get<0>(peak.sort())
-                             .index({int64_t((1.0 - std::atof(meter)) * double(peak.numel() - 1))})
-                             .item<double>();
-        e.photo = (hdr * (q > 1.0 ? 1.0 / q : 1.0)).clamp(0.0, 1.0);
-    }
+    e.photo = imageToTensor(resizeImage(readImage((dir / dataset::viewPng("ref")).string()),
+                                        config.width, config.height));
     // As the pipeline gives it to the head (LighthouseNetImpl::run).
     e.photoLuminance = luminanceTensor(e.photo).mean().clamp_min(1e-3);
     e.cells = lampCellTarget(lamps, *cameras.far, kEmitterCellsPerSide);
