@@ -27,6 +27,15 @@ Vec3d PinholeCamera::cameraToPixel(const Vec3d& cam) const {
     return Vec3d(fx * cam.x() / cam.z() + cx, fy * cam.y() / cam.z() + cy, cam.z());
 }
 
+std::optional<Vec3d> PinholeCamera::projectIntoImage(const Vec3d& world) const {
+    const Vec3d cam = worldToCamera(world);
+    if (!(cam.z() > kMinImageDepth)) return std::nullopt;
+    const Vec3d pixel = cameraToPixel(cam);
+    if (!(pixel.x() >= 0 && pixel.y() >= 0 && pixel.x() < width && pixel.y() < height))
+        return std::nullopt;
+    return pixel;
+}
+
 PinholeCamera PinholeCamera::resized(int newWidth, int newHeight) const {
     PinholeCamera c = *this;
     const double sx = double(newWidth) / width, sy = double(newHeight) / height;

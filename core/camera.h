@@ -10,6 +10,9 @@
 
 namespace lh {
 
+// A point this close to the camera plane (scene units), or behind it, is not in the image.
+inline constexpr double kMinImageDepth = 1e-6;
+
 struct PinholeCamera {
     int width = 0;                          // pixels
     int height = 0;                         // pixels
@@ -24,6 +27,10 @@ struct PinholeCamera {
     Vec3d worldToCamera(const Vec3d& world) const;
     // Camera frame -> continuous pixel coordinates (x, y); z must be > 0.
     Vec3d cameraToPixel(const Vec3d& cam) const;
+    // A world point as the image shows it: continuous pixel coordinates (x, y) and depth z,
+    // when the point lies in front of the camera (z > kMinImageDepth) and projects inside the
+    // image (pixel (u, v) covers [u, u + 1) x [v, v + 1)); nothing otherwise, NaN included.
+    std::optional<Vec3d> projectIntoImage(const Vec3d& world) const;
 
     // The same camera for the image resized to width x height: intrinsics scaled per axis, so
     // a world point lands at its old pixel coordinates times (width / old width, height / old

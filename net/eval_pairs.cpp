@@ -69,16 +69,11 @@ std::vector<PairedDifference> pairedDifferences(const std::vector<EvalCsvRow>& a
         for (const auto& [x, y] : pairs)
             if (std::isfinite((*x)[c]) && std::isfinite((*y)[c]))
                 differences.push_back((*y)[c] - (*x)[c]);
-        d.pairs = int(differences.size());
-        double sum = 0;
-        for (double v : differences) sum += v;
-        d.mean = differences.empty() ? nan : sum / double(differences.size());
-        double squares = 0;
-        for (double v : differences) squares += (v - d.mean) * (v - d.mean);
-        d.standardError =
-            differences.size() < 2
-                ? nan
-                : std::sqrt(squares / double(differences.size() - 1) / double(differences.size()));
+        // meanStd's population deviation over sqrt(n - 1): the sample deviation over sqrt(n).
+        const MeanStd m = meanStd(differences);
+        d.pairs = m.count;
+        d.mean = m.mean;  // NaN without pairs
+        d.standardError = m.count < 2 ? nan : m.std / std::sqrt(double(m.count - 1));
         out.push_back(d);
     }
     return out;

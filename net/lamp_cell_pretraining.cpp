@@ -84,14 +84,7 @@ torch::Tensor lampsOutsideView(const torch::Tensor& centres, const PinholeCamera
     for (int64_t i = 0; i < cpu.size(0); ++i) {
         const Vec3d world{cpu[i][0].item<double>(), cpu[i][1].item<double>(),
                           cpu[i][2].item<double>()};
-        const Vec3d cam = camera.worldToCamera(world);
-        bool shown = cam.z() > 0;
-        if (shown) {
-            const Vec3d pixel = camera.cameraToPixel(cam);
-            shown = pixel.x() >= 0 && pixel.x() < camera.width && pixel.y() >= 0 &&
-                    pixel.y() < camera.height;
-        }
-        if (!shown) outside.push_back(i);
+        if (!camera.projectIntoImage(world)) outside.push_back(i);
     }
     if (outside.empty()) return {};
     return centres.index_select(0, torch::tensor(outside).to(centres.device()));

@@ -3,14 +3,12 @@
 #include "core/errors.h"
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace lh::net {
 
 namespace {
-
-// As synth's visibleFrom: a point this close to the camera plane (scene units) is behind it.
-constexpr double kMinDepth = 1e-6;
 
 bool finite(const Vec3d& v) {
     return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
@@ -32,16 +30,11 @@ std::vector<std::uint8_t> observedMaskFromDepth(const ImageRGB& positions,
         const float* v = &positions.pixels[3 * p];
         const Vec3d world(v[0], v[1], v[2]);
         if (!finite(world)) continue;
-        const Vec3d inCamera = reference.worldToCamera(world);
-        if (!(inCamera.z() > kMinDepth)) continue;
-        const Vec3d pixel = reference.cameraToPixel(inCamera);
-        // Pixel (u, v) covers [u, u + 1) x [v, v + 1): its centre is at u + 0.5.
-        if (!(pixel.x() >= 0 && pixel.y() >= 0 && pixel.x() < reference.width &&
-              pixel.y() < reference.height))
-            continue;
-        const double depth = refDepth.at(int(pixel.x()), int(pixel.y()))[0];
+        const std::optional<Vec3d> pixel = reference.projectIntoImage(world);
+        if (!pixel) continue;
+        const double depth = refDepth.at(int(pixel->x()), int(pixel->y()))[0];
         const bool surfaceThere = std::isfinite(depth) && depth > 0.0;
-        if (surfaceThere && inCamera.z() > depth + tolerance.relative * depth + tolerance.absolute)
+        if (surfaceThere && pixel->z() > depth + tolerance.relative * depth + tolerance.absolute)
             continue;  // something nearer hides it
         mask[p] = 1;
     }

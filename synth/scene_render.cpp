@@ -71,11 +71,7 @@ ImageRGB renderDepth(const RayTracer& tracer, const PinholeCamera& camera) {
 }
 
 bool visibleFrom(const RayTracer& tracer, const PinholeCamera& camera, const Vec3d& point) {
-    const Vec3d inCamera = camera.worldToCamera(point);
-    if (inCamera.z() <= 1e-6) return false;
-    const Vec3d pixel = camera.cameraToPixel(inCamera);
-    if (pixel.x() < 0 || pixel.y() < 0 || pixel.x() >= camera.width || pixel.y() >= camera.height)
-        return false;
+    if (!camera.projectIntoImage(point)) return false;
     const Vec3d w = point - camera.position;
     const double d = w.length();
     // Stop 5 mm short of the point: the surface it lies on must not hide it.

@@ -32,6 +32,35 @@ TEST(Camera, ResizedCameraProjectsToScaledPixels) {
     EXPECT_NEAR((a - b).length(), 0.0, 1e-12);
 }
 
+TEST(Camera, ProjectIntoImageKeepsWhatThePhotoShows) {
+    // 320x240, f = 277.1 px, principal point at the centre: (0, 0, 2) lands on pixel
+    // (160, 120) at depth 2; (0.5, 0, 1) on x = 160 + 138.55 = 298.55, inside; (1, 0, 1) on
+    // x = 437.1, outside; behind the camera, on its plane, or NaN: nothing.
+    const PinholeCamera c = parseCamerasJson(kValid, "test.json").ref;
+    const auto centre = c.projectIntoImage(Vec3d(0.0, 0.0, 2.0));
+    ASSERT_TRUE(centre.has_value());
+    EXPECT_NEAR(centre->x(), 160.0, 1e-9);
+    EXPECT_NEAR(centre->y(), 120.0, 1e-9);
+    EXPECT_NEAR(centre->z(), 2.0, 1e-12);
+    const auto edge = c.projectIntoImage(Vec3d(0.5, 0.0, 1.0));
+    ASSERT_TRUE(edge.has_value());
+    EXPECT_NEAR(edge->x(), 298.55, 1e-9);
+    EXPECT_FALSE(c.projectIntoImage(Vec3d(1.0, 0.0, 1.0)).has_value());
+    EXPECT_FALSE(c.projectIntoImage(Vec3d(0.0, 0.0, -2.0)).has_value());
+    EXPECT_FALSE(c.projectIntoImage(Vec3d(0.0, 0.0, 0.0)).has_value());
+    EXPECT_FALSE(c.projectIntoImage(Vec3d(std::nan(""), 0.0, 2.0)).has_value());
+    // Pixel (u, v) covers [u, u + 1): of a 100x80 camera of focal 100 px, x = 0 is inside and
+    // x = 100, its right edge, outside.
+    PinholeCamera small;
+    small.width = 100;
+    small.height = 80;
+    small.fx = small.fy = 100.0;
+    small.cx = 50.0;
+    small.cy = 40.0;
+    EXPECT_TRUE(small.projectIntoImage(Vec3d(-0.5, 0.0, 1.0)).has_value());
+    EXPECT_FALSE(small.projectIntoImage(Vec3d(0.5, 0.0, 1.0)).has_value());
+}
+
 TEST(Camera, ParsesConventionsExample) {
     CamerasFile c = parseCamerasJson(kValid, "test.json");
     EXPECT_EQ(c.ref.width, 320);
