@@ -1,6 +1,8 @@
 #include "core/camera.h"
 #include "core/errors.h"
 
+#include "tests/support/test_camera.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,12 +53,7 @@ TEST(Camera, ProjectIntoImageKeepsWhatThePhotoShows) {
     EXPECT_FALSE(c.projectIntoImage(Vec3d(std::nan(""), 0.0, 2.0)).has_value());
     // Pixel (u, v) covers [u, u + 1): of a 100x80 camera of focal 100 px, x = 0 is inside and
     // x = 100, its right edge, outside.
-    PinholeCamera small;
-    small.width = 100;
-    small.height = 80;
-    small.fx = small.fy = 100.0;
-    small.cx = 50.0;
-    small.cy = 40.0;
+    const PinholeCamera small = test::centredCamera(100, 80, 100.0);
     EXPECT_TRUE(small.projectIntoImage(Vec3d(-0.5, 0.0, 1.0)).has_value());
     EXPECT_FALSE(small.projectIntoImage(Vec3d(0.5, 0.0, 1.0)).has_value());
 }

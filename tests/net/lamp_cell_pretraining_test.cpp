@@ -8,6 +8,8 @@
 #include "core/errors.h"
 #include "net/config.h"
 
+#include "tests/support/test_camera.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -40,12 +42,7 @@ TEST(LampsOutsideView, KeepsTheLampsThePhotoDoesNotShow) {
     // A 100x80 camera of focal 50 px at the origin looking down +z: (0, 0, 2) projects to its
     // centre, (3, 0, 2) to x = 125 (outside), (0, 0, -2) lies behind it, and (0.9, 0, 1) to
     // x = 95 (inside, near the right edge).
-    PinholeCamera camera;
-    camera.width = 100;
-    camera.height = 80;
-    camera.fx = camera.fy = 50;
-    camera.cx = 50;
-    camera.cy = 40;
+    PinholeCamera camera = test::centredCamera(100, 80, 50.0);
     const auto lamps = torch::tensor({0.f, 0.f, 2.f, 3.f, 0.f, 2.f, 0.f, 0.f, -2.f, 0.9f, 0.f, 1.f})
                            .reshape({4, 3});
     const auto outside = lampsOutsideView(lamps, camera);

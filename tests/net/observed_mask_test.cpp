@@ -4,6 +4,8 @@
 
 #include "core/errors.h"
 
+#include "tests/support/test_camera.h"
+
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -14,14 +16,7 @@ namespace {
 
 // 40x30 pixels, f = 20 px, principal point at the centre: x = 20 + 20 X / Z, y = 15 + 20 Y / Z.
 PinholeCamera camera(const Vec3d& position = Vec3d(0.0)) {
-    PinholeCamera c;
-    c.width = 40;
-    c.height = 30;
-    c.fx = c.fy = 20.0;
-    c.cx = 20.0;
-    c.cy = 15.0;
-    c.position = position;
-    return c;
+    return test::centredCamera(40, 30, 20.0, position);
 }
 
 // Depth 2 (the screen) in columns 0..19, 4 (the wall) in columns 20..39.

@@ -5,21 +5,15 @@
 #include "synth/scene_render.h"
 #include "tests/synth/synth_test_scenes.h"
 
+#include "tests/support/test_camera.h"
+
 #include <gtest/gtest.h>
 
 namespace lh::synth {
 namespace {
 
 // 64x48 pinhole camera at the origin looking along +z.
-PinholeCamera smallCamera() {
-    PinholeCamera cam;
-    cam.width = 64;
-    cam.height = 48;
-    cam.fx = cam.fy = 40;
-    cam.cx = 32;
-    cam.cy = 24;
-    return cam;
-}
+PinholeCamera smallCamera() { return lh::test::centredCamera(64, 48, 40.0); }
 
 PanoramaLibrary& panoramas() {
     static PanoramaLibrary library(LIGHTHOUSE_HDRI_DIR);

@@ -6,6 +6,8 @@
 #include "synth/scene_render.h"
 #include "tests/synth/synth_test_scenes.h"
 
+#include "tests/support/test_camera.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -59,16 +61,7 @@ Scene mirrorScene() {
     return s;
 }
 
-PinholeCamera camera(double x) {
-    PinholeCamera cam;
-    cam.width = 320;
-    cam.height = 240;
-    cam.fx = cam.fy = 240;
-    cam.cx = 160;
-    cam.cy = 120;
-    cam.position = Vec3d(x, 0, 0);
-    return cam;
-}
+PinholeCamera camera(double x) { return lh::test::centredCamera(320, 240, 240.0, Vec3d(x, 0, 0)); }
 
 // First t > 0 where origin + t dir meets the sphere, if it does.
 std::optional<double> hitSphere(const Vec3d& origin, const Vec3d& dir, const Vec3d& centre,
