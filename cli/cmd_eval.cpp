@@ -47,6 +47,10 @@ void addEvalCommand(CLI::App& app, const int& threads) {
         "unobserved ones, the lamps and windows, the observed and the unobserved lamps and "
         "windows, and those unobserved ones turned 30 and 60 degrees to the side): what a "
         "perfect job on each part alone would gain; not with --shard");
+    cmd->add_flag("--unclipped-photos", o->unclippedPhotos,
+                  "The model reads each example's linear renders (ref.exr, src.exr) instead of "
+                  "its PNG photos, as predict does given EXR photos (the MPI-only and global rows "
+                  "come from the same MPI)");
     auto shard = std::make_shared<std::string>();
     cmd->add_option(
         "--shard", *shard,

@@ -284,7 +284,10 @@ void runPredict(const PredictOptions& o, int threads) {
 void addPredictCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<PredictOptions>();
     CLI::App* cmd = app.add_subcommand("predict", netCommandDescription("predict"));
-    cmd->add_option("--ref", o->ref, "Reference image (.png/.jpg sRGB or .exr linear)");
+    cmd->add_option("--ref", o->ref,
+                    "Reference image (.png/.jpg sRGB or .exr linear; the network reads an EXR "
+                    "clipped at 1, as a camera saves it, and only a '+unclipped' model's lamp "
+                    "head also reads the radiance above 1)");
     cmd->add_option("--src", o->src, "Second image of the stereo pair");
     cmd->add_option("--cameras", o->cameras,
                     "cameras.json with ref and src (near/far optional: estimated if absent)");

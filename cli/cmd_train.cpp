@@ -36,8 +36,10 @@ void addTrainCommand(CLI::App& app, const int& threads) {
            "'+emitters' (wide+emitters) adds a head that places 3 compact lamps in the volume, "
            "'+photo' with it (wide+emitters+photo) a head that also reads the photo and puts "
            "each lamp at the peak of its distribution over places, '+cells' with both a "
-           "classifier of where lamps are from the photo alone (see --pretrain-lamp-cells), and "
-           "'+apart' with '+photo' lamps that each take a different peak")
+           "classifier of where lamps are from the photo alone (see --pretrain-lamp-cells), "
+           "'+apart' with '+photo' lamps that each take a different peak, and '+unclipped' "
+           "with '+photo' a head that reads the photo before its clip at 1 (the examples' EXR "
+           "renders; at predict, an EXR photo)")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->out,
                     "Model file OUT; OUT.csv and OUT.png (training curves) are written next to it")

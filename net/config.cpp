@@ -76,14 +76,16 @@ NetConfig NetConfig::paper() {
 NetConfig NetConfig::byName(const std::string& name) {
     // The base name, then any of the suffixes.
     std::string base = name;
-    bool profile = false, emitters = false, photo = false, cells = false, apart = false;
+    bool profile = false, emitters = false, photo = false, cells = false, apart = false,
+         unclipped = false;
     for (bool found = true; found;) {
         found = false;
         for (auto [suffix, flag] : {std::pair<std::string, bool*>{"+profile", &profile},
                                     std::pair<std::string, bool*>{"+emitters", &emitters},
                                     std::pair<std::string, bool*>{"+photo", &photo},
                                     std::pair<std::string, bool*>{"+cells", &cells},
-                                    std::pair<std::string, bool*>{"+apart", &apart}}) {
+                                    std::pair<std::string, bool*>{"+apart", &apart},
+                                    std::pair<std::string, bool*>{"+unclipped", &unclipped}}) {
             if (!*flag && base.size() > suffix.size() &&
                 base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0) {
                 base.resize(base.size() - suffix.size());
@@ -103,14 +105,16 @@ NetConfig NetConfig::byName(const std::string& name) {
     else
         throw InputError("unknown configuration '" + name +
                          "' (expected 'standard', 'wide', 'small' or 'paper', optionally with "
-                         "'+profile', '+emitters', '+emitters+photo', then '+cells' and '+apart')");
+                         "'+profile', '+emitters', '+emitters+photo', then '+cells', '+apart' and "
+                         "'+unclipped')");
     c.name = name;
     c.heightProfile = profile;
     c.emitters = emitters ? kSuffixEmitters : 0;
     c.emitterPhoto = photo;
     c.emitterPhotoCells = cells;
     c.emitterApart = apart;
-    c.validate();  // "+photo" without "+emitters", "+cells" or "+apart" without "+photo"
+    c.emitterPhotoUnclipped = unclipped;
+    c.validate();  // "+photo" without "+emitters"; "+cells", "+apart", "+unclipped" without it
     return c;
 }
 
@@ -147,6 +151,8 @@ void NetConfig::validate() const {
         throw InputError("'+cells' classifies the photo head's input: it needs '+emitters+photo'");
     if (emitterApart && !emitterPhoto)
         throw InputError("'+apart' places the photo head's lamps: it needs '+emitters+photo'");
+    if (emitterPhotoUnclipped && !emitterPhoto)
+        throw InputError("'+unclipped' is what the photo head reads: it needs '+emitters+photo'");
     if (completionScale != 1 && completionScale != 2)
         throw InputError("completion scale must be 1 or 2");
     if (completionResolution() % 16 != 0)
@@ -176,18 +182,20 @@ std::string NetConfig::toJson() const {
                               {"emitter_photo", emitterPhoto},
                               {"emitter_photo_cells", emitterPhotoCells},
                               {"emitter_apart", emitterApart},
+                              {"emitter_photo_unclipped", emitterPhotoUnclipped},
                               {"prune_alpha", pruneAlpha},
                               {"highlight_gain", highlightGain}};
     return j.dump();
 }
 
 bool NetConfig::sameParameters(const NetConfig& other) const {
-    // Everything but the name, the colour anchor, the pruning threshold, the highlight gain and
-    // where the lamps are placed shapes the parameters.
+    // Everything but the name, the colour anchor, the pruning threshold, the highlight gain,
+    // where the lamps are placed and which photo the photo head reads shapes the parameters.
     NetConfig a = *this, b = other;
     a.name = b.name;
     a.colourAnchor = b.colourAnchor;
     a.emitterApart = b.emitterApart;
+    a.emitterPhotoUnclipped = b.emitterPhotoUnclipped;
     a.pruneAlpha = b.pruneAlpha;
     a.highlightGain = b.highlightGain;
     return a.toJson() == b.toJson();
@@ -218,6 +226,7 @@ NetConfig NetConfig::fromJson(const std::string& text, const std::string& source
         c.emitterPhoto = j.value("emitter_photo", false);
         c.emitterPhotoCells = j.value("emitter_photo_cells", false);
         c.emitterApart = j.value("emitter_apart", false);
+        c.emitterPhotoUnclipped = j.value("emitter_photo_unclipped", false);
         c.pruneAlpha = j.value("prune_alpha", 0.0);
         c.highlightGain = j.value("highlight_gain", 1.0);
     } catch (const nlohmann::json::exception& e) {

@@ -74,6 +74,13 @@ struct NetConfig {
     // classifier's logits all sit at its one peak. Named by a "+apart" suffix, with
     // "+emitters+photo".
     bool emitterApart = false;
+    // The photo head reads the reference photo's radiance before the clip at 1 where the input
+    // keeps it: a linear EXR photo (PairInputs::refUnclipped), and in training each example's
+    // unclipped render, exposed as its photo was. The brightest pixels' magnitudes (lamps and
+    // their reflections) say where the lamps the photo does not show are, which a clipped photo
+    // loses. Everything else reads the clipped photo, as before. Named by a "+unclipped" suffix,
+    // with "+emitters+photo".
+    bool emitterPhotoUnclipped = false;
     // Voxel alpha below which the model's volumes are left empty: the threshold it was trained
     // under (train --prune-alpha), so predict prunes there by default and the walls it learnt
     // to make opaque survive. 0: trained unpruned; predict uses its own default.
@@ -89,8 +96,9 @@ struct NetConfig {
     static NetConfig wide();
     // "standard", "wide", "small" or "paper", each optionally followed by "+profile"
     // (heightProfile on), "+emitters" (kSuffixEmitters emitters), "+photo" (emitterPhoto on,
-    // with "+emitters"), "+cells" (emitterPhotoCells on, with "+photo") and "+apart"
-    // (emitterApart on, with "+photo"), in any order; throws InputError otherwise.
+    // with "+emitters"), "+cells" (emitterPhotoCells on, with "+photo"), "+apart"
+    // (emitterApart on, with "+photo") and "+unclipped" (emitterPhotoUnclipped on, with
+    // "+photo"), in any order; throws InputError otherwise.
     static NetConfig byName(const std::string& name);
 
     // Throws InputError naming the bad size.

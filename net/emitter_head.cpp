@@ -2,6 +2,7 @@
 
 #include "net/hdr.h"
 #include "net/mpi_resample.h"
+#include "net/tensor_image.h"
 
 #include <limits>
 
@@ -94,7 +95,7 @@ Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayou
     auto features = down2(down1(x));  // [1, 32, 8, 8, 8]
     torch::Tensor places;             // the photo encoder's output, [1, channels x rows x columns]
     if (readsPhoto) {
-        places = photoPlaces(photo, photoLuminance);
+        places = photoPlaces(photo);
         features = features + photoToCells(places).reshape({1, -1, 1, 1, 1});
     }
     features = mix(features);
@@ -121,12 +122,13 @@ Emitters EmitterHeadImpl::forward(const torch::Tensor& level0, const VolumeLayou
     return e;
 }
 
-torch::Tensor EmitterHeadImpl::photoPlaces(const torch::Tensor& photo,
-                                           const torch::Tensor& photoLuminance) {
+torch::Tensor EmitterHeadImpl::photoPlaces(const torch::Tensor& photo) {
     TORCH_CHECK(photo.defined(), "a +photo emitter head needs the photo");
-    // The photo relative to its own mean luminance, so that the exposure does not matter, as
-    // ln(1 + x) like every radiance the networks read.
-    auto relative = radianceFeature(photo.clamp_min(0) / photoLuminance);
+    // Each photo relative to its own mean luminance (floored at 1e-3), so that the exposure
+    // does not matter, as ln(1 + x) like every radiance the networks read.
+    const auto positive = photo.clamp_min(0);
+    const auto meanLuminance = luminanceTensor(positive).mean({1, 2, 3}, true).clamp_min(1e-3);
+    auto relative = radianceFeature(positive / meanLuminance);
     // A "+cells" head reads it at half size: where the lamps are is in the shading's large
     // scale, and its classifier generalised better so (held-out divergence after pretraining).
     if (classifiesPhoto) relative = F::avg_pool2d(relative, F::AvgPool2dFuncOptions(2));
@@ -140,10 +142,9 @@ torch::nn::Linear EmitterHeadImpl::photoCellsOutput() {
     return torch::nn::Linear(std::dynamic_pointer_cast<torch::nn::LinearImpl>(photoCells->ptr(3)));
 }
 
-torch::Tensor EmitterHeadImpl::photoCellLogits(const torch::Tensor& photo,
-                                               const torch::Tensor& photoLuminance) {
+torch::Tensor EmitterHeadImpl::photoCellLogits(const torch::Tensor& photo) {
     TORCH_CHECK(classifiesPhoto, "only a +cells emitter head classifies the photo");
-    return photoCells->forward(photoPlaces(photo, photoLuminance));
+    return photoCells->forward(photoPlaces(photo));
 }
 
 torch::Tensor apartPeakWeights(const torch::Tensor& sharpenedLogits, int64_t side) {

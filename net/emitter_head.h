@@ -70,14 +70,15 @@ struct EmitterHeadImpl : torch::nn::Module {
     // trained through); photoLuminance: the photo's mean linear luminance, a scalar tensor
     // (the emitters' radiance is relative to it, so a brighter exposure brightens them too);
     // photo: the linear reference image [1, 3, H, W] (H, W multiples of 16), read only by a
-    // "+photo" head.
+    // "+photo" head, relative to its own mean luminance (it may be the photo before its clip at
+    // 1, NetConfig::emitterPhotoUnclipped, while photoLuminance is the clipped photo's).
     Emitters forward(const torch::Tensor& level0, const VolumeLayout& layout,
                      const torch::Tensor& photoLuminance, const torch::Tensor& photo = {});
 
     // "+cells": the logits over level 0's 8^3 cells [1, cells] of where lamps are, from the
     // photo alone (its encoder and photoCells), as forward adds them to every lamp's. The
-    // photo and its mean luminance as forward takes them.
-    torch::Tensor photoCellLogits(const torch::Tensor& photo, const torch::Tensor& photoLuminance);
+    // photos [N, 3, H, W] as forward takes one.
+    torch::Tensor photoCellLogits(const torch::Tensor& photo);
     // "+cells": the classifier's last layer (one logit per cell).
     torch::nn::Linear photoCellsOutput();
 
@@ -96,7 +97,7 @@ struct EmitterHeadImpl : torch::nn::Module {
 
 private:
     // The photo encoder's output for a photo [N, 3, H, W]: [N, channels x rows x columns].
-    torch::Tensor photoPlaces(const torch::Tensor& photo, const torch::Tensor& photoLuminance);
+    torch::Tensor photoPlaces(const torch::Tensor& photo);
 };
 TORCH_MODULE(EmitterHead);
 

@@ -190,7 +190,8 @@ ImageRGB stackSheetStrips(const std::vector<ImageRGB>& strips) {
     return sheet;
 }
 
-std::string evalPredictionNotes(double highlightGain, double highlightKnee, bool shell) {
+std::string evalPredictionNotes(double highlightGain, double highlightKnee, bool shell,
+                                bool unclippedPhotos) {
     std::ostringstream notes;
     if (highlightGain != 1.0 && highlightKnee == 1.0)
         notes << "\n\"ours\": what each predicted voxel holds above white, times " << highlightGain
@@ -201,6 +202,9 @@ std::string evalPredictionNotes(double highlightGain, double highlightKnee, bool
     if (shell)
         notes << "\n\"ours\": every predicted volume collapsed into an opaque shell "
                  "(`--shell`, docs/network.md).\n";
+    if (unclippedPhotos)
+        notes << "\n\"ours\": predicted from each example's linear renders (ref.exr, src.exr), "
+                 "not its PNG photos (`--unclipped-photos`).\n";
     return notes.str();
 }
 
@@ -271,7 +275,8 @@ std::string mergeEvalShards(const std::string& dir) {
     const std::string markdown =
         evalTableMarkdown(methods, scenes, header.value("data", ""), header.value("config", "")) +
         evalPredictionNotes(header.value("highlight_gain", 1.0),
-                            header.value("highlight_knee", 1.0), header.value("shell", false));
+                            header.value("highlight_knee", 1.0), header.value("shell", false),
+                            header.value("unclipped_photos", false));
     writeTextFile((fs::path(dir) / "metrics.csv").string(), csv.str());
     writePng(stackSheetStrips(sheet), (fs::path(dir) / "contact_sheet.png").string());
     writeTextFile(table.string(), markdown);

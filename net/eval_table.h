@@ -47,9 +47,10 @@ std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::siz
                               const std::string& data, const std::string& configName);
 
 // The notes under Table 2 on how "ours" was predicted, when not as predict does by default:
-// --highlight-gain (a gain other than 1, with its --highlight-knee) and --shell. Empty when
-// neither.
-std::string evalPredictionNotes(double highlightGain, double highlightKnee, bool shell);
+// --highlight-gain (a gain other than 1, with its --highlight-knee), --shell and
+// --unclipped-photos. Empty when none.
+std::string evalPredictionNotes(double highlightGain, double highlightKnee, bool shell,
+                                bool unclippedPhotos = false);
 
 // The headroom section (EvalOptions::headroom): `ours` and each of `rows` (ours with one part
 // of the truth put in) on PSNR, angle, irradiance error and radiance ratio over all pixels.

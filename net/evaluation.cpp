@@ -121,13 +121,19 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     const auto start = std::chrono::steady_clock::now();
     for (size_t s = 0; s < dirs.size(); ++s) {
         if (!o.shard.owns(s)) continue;
-        const TrainingExample ex = loadExample(dirs[s], /*withMasks=*/true);
+        TrainingExample ex = loadExample(dirs[s], /*withMasks=*/true);
+        // The global envmap's colour stays the saved photo's mean; the model reads the renders.
+        const ImageRGB savedRef = ex.ref;
+        if (o.unclippedPhotos && !useUnclippedViews(ex))
+            throw FileError("'" + dirs[s] +
+                            "' lacks ref.exr, src.exr or tgt.exr of its photos' size (or one "
+                            "holds NaN): --unclipped-photos needs them");
         StereoPair pair{ex.ref, ex.src, ex.cameras};
         const Prediction prediction = predictor.predict(pair);
         const RenderVolume ours(prediction.volume), mpiOnly(prediction.mpiOnly);
 
         float observedMean[3];
-        meanColour(ex.ref, observedMean);
+        meanColour(savedRef, observedMean);
         const float grey[3] = {kGreyFill, kGreyFill, kGreyFill};
         const auto& firstGt = ex.envmaps.front();
         const ImageRGB global = renderWithBackground(mpiOnly, ex.cameras.ref.position,
@@ -195,8 +201,8 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     }
 
     report.markdown = evalTableMarkdown(report.methods, owned, o.data, config.name);
-    report.markdown +=
-        evalPredictionNotes(predictor.highlightGain(), predictor.highlightKnee(), o.shell);
+    report.markdown += evalPredictionNotes(predictor.highlightGain(), predictor.highlightKnee(),
+                                           o.shell, o.unclippedPhotos);
     if (o.headroom) report.markdown += headroomTableMarkdown(report.methods[0], report.headroom);
     if (!o.shard.active) report.markdown += lampPlacementMarkdown(report.lamps);
     if (o.shard.active) {
@@ -226,6 +232,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
               {"methods", methodNames},
               {"prune_alpha", predictor.pruneAlpha()},
               {"shell", o.shell},
+              {"unclipped_photos", o.unclippedPhotos},
               {"highlight_gain", predictor.highlightGain()},
               {"highlight_knee", predictor.highlightKnee()}}},
             {"csv", "metrics." + tag + ".csv"},

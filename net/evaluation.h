@@ -42,6 +42,10 @@ struct EvalOptions {
     // perfect MPI, a perfect completion or perfect lamps and windows alone would gain.
     // Not with shards.
     bool headroom = false;
+    // The model reads each example's linear renders (ref.exr, src.exr) instead of its saved
+    // photos: what a user who gives an unclipped EXR photo gets (ours, and the MPI-only and
+    // global rows, which come from its MPI; the global's colour stays the PNG photo's mean).
+    bool unclippedPhotos = false;
     // With shard.active: only scene i with shard.owns(i), into out/metrics.shard-K-of-N.csv,
     // out/sheet.shard-K-of-N/ and out/shard-K-of-N.json; mergeEvalShards (net/eval_table.h)
     // writes table.md, metrics.csv and contact_sheet.png from a complete set.

@@ -5,6 +5,7 @@
 #include "image/image_io.h"
 #include "image/resample.h"
 #include "net/config.h"
+#include "net/lighthouse_net.h"
 #include "net/losses.h"
 #include "net/tensor_image.h"
 #include "synth/scene_json.h"
@@ -102,10 +103,17 @@ LampCellExample loadLampCellExample(const std::string& directory, const NetConfi
     if (!cameras.far) throw FileError((dir / dataset::kCameras).string() + ": no far depth");
     if (unseenOnly) lamps = lampsOutsideView(lamps, cameras.ref);
     if (!lamps.defined()) return e;
-    e.photo = imageToTensor(resizeImage(readImage((dir / dataset::viewPng("ref")).string()),
-                                        config.width, config.height));
-    // As the pipeline gives it to the head (LighthouseNetImpl::run).
-    e.photoLuminance = luminanceTensor(e.photo).mean().clamp_min(1e-3);
+    // As the pipeline gives it to the head (LighthouseNetImpl::run): the photo before its clip
+    // at 1 where the model reads that and the example has it, else the saved photo.
+    const bool unclipped =
+        config.emitterPhotoUnclipped && fs::is_regular_file(dir / dataset::viewExr("ref"));
+    const std::string view = unclipped ? dataset::viewExr("ref") : dataset::viewPng("ref");
+    // A NaN or infinity in a render would reach the classifier's every output; read as the
+    // pipeline reads them (makePairInputs).
+    e.photo = torch::nan_to_num(imageToTensor(resizeImage(readImage((dir / view).string()),
+                                                          config.width, config.height)),
+                                0.0, kMaxPhotoRadiance, 0.0)
+                  .clamp_min(0);
     e.cells = lampCellTarget(lamps, *cameras.far, kEmitterCellsPerSide);
     e.mirroredCells = lampCellTarget(lamps, *cameras.far, kEmitterCellsPerSide, /*mirrored=*/true);
     ok = true;
@@ -119,8 +127,7 @@ LampCellScores scoreLampCells(EmitterHead& head, const std::vector<LampCellExamp
     const auto device = head->parameters().front().device();
     const LampCellScores s = scoreLogits(
         [&](const LampCellExample& e) {
-            return head->photoCellLogits(e.photo.to(device), e.photoLuminance.to(device))
-                .to(torch::kCPU);
+            return head->photoCellLogits(e.photo.to(device)).to(torch::kCPU);
         },
         examples);
     head->train(wasTraining);
@@ -177,16 +184,14 @@ LampCellScores pretrainLampCells(EmitterHead& head, const std::vector<LampCellEx
         double sum = 0;
         int batches = 0;
         for (size_t b = 0; b < order.size(); b += size_t(o.batch)) {
-            std::vector<torch::Tensor> photos, luminances, targets;
+            std::vector<torch::Tensor> photos, targets;
             for (size_t j = b; j < std::min(order.size(), b + size_t(o.batch)); ++j) {
                 const LampCellExample& e = training[order[j]];
                 const bool mirror = (rng() & 1u) != 0;
                 photos.push_back(mirror ? e.photo.flip({3}) : e.photo);
-                luminances.push_back(e.photoLuminance.reshape({1, 1, 1, 1}));
                 targets.push_back(mirror ? e.mirroredCells : e.cells);
             }
-            const auto logits = head->photoCellLogits(torch::cat(photos).to(device),
-                                                      torch::cat(luminances).to(device));
+            const auto logits = head->photoCellLogits(torch::cat(photos).to(device));
             const auto loss = divergence(logits, torch::stack(targets).to(device)).mean();
             adam.zero_grad();
             loss.backward();

@@ -24,10 +24,9 @@ struct NetConfig;
 
 // One photo and where its room's lamps and windows are.
 struct LampCellExample {
-    torch::Tensor photo;           // [1, 3, H, W] linear, at the network's input size
-    torch::Tensor photoLuminance;  // scalar: the photo's mean linear luminance
-    torch::Tensor cells;           // [cells]: 1/M on the cell of each of the M lamps
-    torch::Tensor mirroredCells;   // the same with the cells' x mirrored
+    torch::Tensor photo;          // [1, 3, H, W] linear, at the network's input size
+    torch::Tensor cells;          // [cells]: 1/M on the cell of each of the M lamps
+    torch::Tensor mirroredCells;  // the same with the cells' x mirrored
 };
 
 // Level 0's cells (cellsPerSide^3 of them, z-major like the cubes) of a data-set example of
@@ -47,9 +46,10 @@ torch::Tensor lampCentresOfScene(const std::string& sceneJson);
 // is tested, and nothing is occluded. An undefined tensor if the photo shows them all.
 torch::Tensor lampsOutsideView(const torch::Tensor& centres, const PinholeCamera& camera);
 
-// The example of one data-set folder (ref.png, cameras.json, scene.json), the photo resized
-// to the configuration's input size; `ok` false when the scene has no lamps or no scene.json.
-// With `unseenOnly` the cells name only the lamps and windows the photo does not show
+// The example of one data-set folder (ref.png, cameras.json, scene.json; ref.exr instead of
+// ref.png for a configuration whose head reads the unclipped photo, where the folder has it),
+// the photo resized to the configuration's input size; `ok` false when the scene has no lamps or no
+// scene.json. With `unseenOnly` the cells name only the lamps and windows the photo does not show
 // (lampsOutsideView), and `ok` is false where it shows them all. Throws FileError for an
 // unreadable file.
 LampCellExample loadLampCellExample(const std::string& directory, const NetConfig& config, bool& ok,

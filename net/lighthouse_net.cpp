@@ -184,7 +184,10 @@ PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) 
     if (runCompletion) result.cubes = complete(result.mpiCubes, in.layout, logAnchor);
     if (runCompletion && emitterHead) {
         const auto photoLuminance = luminanceTensor(in.refLinear).mean().clamp_min(1e-3);
-        result.emitters = emitterHead(result.cubes[0], in.layout, photoLuminance, in.refLinear);
+        const auto& photo = config.emitterPhotoUnclipped && in.refUnclipped.defined()
+                                ? in.refUnclipped
+                                : in.refLinear;
+        result.emitters = emitterHead(result.cubes[0], in.layout, photoLuminance, photo);
         result.cubes = addEmitters(result.cubes, result.emitters, in.layout);
     }
     return result;
@@ -196,8 +199,17 @@ PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const Pinhol
     PairInputs in;
     in.ref = refCamera.resized(config.width, config.height);
     in.src = srcCamera.resized(config.width, config.height);
-    const auto refLinear = imageToTensor(resizeImage(ref, config.width, config.height));
+    // A linear EXR photo keeps radiance above 1, which no network but a photo head that reads
+    // it (NetConfig::emitterPhotoUnclipped) saw in training: the rest reads it clipped at 1, as
+    // a camera would have saved it. NaN and negative values read as 0, infinity as the largest
+    // half float (kMaxPhotoRadiance).
+    const auto refUnclipped =
+        torch::nan_to_num(imageToTensor(resizeImage(ref, config.width, config.height)), 0.0,
+                          kMaxPhotoRadiance, 0.0)
+            .clamp_min(0);
+    const auto refLinear = refUnclipped.clamp_max(1.0);
     const auto srcLinear = imageToTensor(resizeImage(src, config.width, config.height));
+    in.refUnclipped = refUnclipped.to(device);
     in.refLinear = refLinear.to(device);
     in.refEncoded = srgbEncodeTensor(refLinear).to(device);
     in.srcEncoded = srgbEncodeTensor(srcLinear).to(device);

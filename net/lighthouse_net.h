@@ -15,12 +15,20 @@
 
 namespace lh::net {
 
+// The largest radiance a photo pixel is read as: the largest half float, what an EXR's half
+// channels hold (an infinite pixel reads as this).
+constexpr double kMaxPhotoRadiance = 65504.0;
+
 // What the pipeline needs for one stereo pair, already at the network's input size.
 struct PairInputs {
     torch::Tensor refEncoded, srcEncoded;  // [1, 3, H, W] sRGB-encoded, in [0, 1]
-    torch::Tensor refLinear;               // [1, 3, H, W] linear
-    PinholeCamera ref, src;                // intrinsics of the resized images
-    std::vector<double> depths;            // plane depths, far to near
+    torch::Tensor refLinear;               // [1, 3, H, W] linear, clipped at 1 as a photo is
+    // [1, 3, H, W] linear, before the clip: above 1 where an EXR photo (or, in training, an
+    // example's unclipped render) keeps its lamps' and windows' radiance. Read only by a photo
+    // head that reads the unclipped photo (NetConfig::emitterPhotoUnclipped).
+    torch::Tensor refUnclipped;
+    PinholeCamera ref, src;      // intrinsics of the resized images
+    std::vector<double> depths;  // plane depths, far to near
     VolumeLayout layout;
 };
 

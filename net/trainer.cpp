@@ -479,10 +479,15 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
     if (unclipped && o.maxPhotoClipped < 1.0)
         a.exposure =
             std::min(a.exposure, exposureClippingAtMost(ex.ref, a.gain, o.maxPhotoClipped));
-    ImageRGB targetHdr;
+    ImageRGB targetHdr, refUnclipped;
     if (unclipped) {
         targetHdr = ex.tgt;
         augmentRadiance(targetHdr, a);
+    }
+    // The photo before its clip, exposed as the photo is, for a head that reads it.
+    if (unclipped && config.emitterPhotoUnclipped) {
+        refUnclipped = ex.ref;
+        augmentRadiance(refUnclipped, a);
     }
     if (o.augment || unclipped) {
         augmentPhoto(ex.ref, a, rng);
@@ -493,6 +498,9 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
     PreparedExample p;
     p.inputs = makePairInputs(ex.ref, ex.src, ex.cameras.ref, *ex.cameras.src, *ex.cameras.near,
                               *ex.cameras.far, config, device);
+    if (!refUnclipped.pixels.empty())
+        p.inputs.refUnclipped =
+            imageToTensor(resizeImage(refUnclipped, config.width, config.height)).to(device);
     p.target = ex.cameras.tgt->resized(config.width, config.height);
     p.targetImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
     if (unclipped)

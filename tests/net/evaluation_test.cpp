@@ -141,6 +141,36 @@ TEST(Evaluation, AnEmitterModelsLampsAreScoredFromEveryEnvmapsPoint) {
     EXPECT_TRUE(fs::is_regular_file(fs::path(run.out) / "lamps.csv"));
 }
 
+TEST(Evaluation, UnclippedPhotosReachTheModelAndAreRequiredWhereAsked) {
+    NetConfig config = test::tinyHdrConfig();
+    config.width = 64;
+    config.height = 32;
+    config.emitters = 3;
+    config.emitterPhoto = config.emitterPhotoUnclipped = true;
+    UntrainedEval run("lighthouse_eval_unclipped", config, 9);
+    std::ostringstream progress;
+    run.options.out = run.out + "_png";
+    const EvalReport png = evaluate(run.options, progress);
+    run.options.out = run.out;
+    run.options.unclippedPhotos = true;
+    const EvalReport exr = evaluate(run.options, progress);
+    ASSERT_EQ(png.methods.size(), exr.methods.size());
+    ASSERT_EQ(png.methods[0].name, "ours");
+    // The renders are not the 8-bit photos (and the rooms' lamps are brighter than 1 in them).
+    EXPECT_NE(png.methods[0].psnrAll, exr.methods[0].psnrAll);
+    EXPECT_NE(exr.markdown.find("`--unclipped-photos`"), std::string::npos) << exr.markdown;
+    EXPECT_EQ(png.markdown.find("`--unclipped-photos`"), std::string::npos);
+    fs::remove_all(run.out + "_png");
+    // An example without its source render: one error that names the option.
+    fs::remove(fs::path(run.data) / "000001" / "src.exr");
+    try {
+        evaluate(run.options, progress);
+        FAIL() << "an example without src.exr was scored";
+    } catch (const FileError& e) {
+        EXPECT_NE(std::string(e.what()).find("--unclipped-photos"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Evaluation, TheNotesSayHowOursWasPredicted) {
     EXPECT_EQ(evalPredictionNotes(1.0, 1.0, false), "");
     EXPECT_NE(
@@ -152,6 +182,8 @@ TEST(Evaluation, TheNotesSayHowOursWasPredicted) {
     // A knee without a gain changes nothing, so it is not noted.
     EXPECT_EQ(evalPredictionNotes(1.0, 1.25, false), "");
     EXPECT_NE(evalPredictionNotes(1.0, 1.0, true).find("`--shell`"), std::string::npos);
+    EXPECT_NE(evalPredictionNotes(1.0, 1.0, false, true).find("`--unclipped-photos`"),
+              std::string::npos);
 }
 
 }  // namespace

@@ -65,7 +65,6 @@ LampCellExample sidedExample(bool left, double brightness) {
     LampCellExample e;
     e.photo = torch::full({1, 3, 32, 48}, 0.05 * brightness);
     e.photo.narrow(3, left ? 0 : 24, 24).fill_(0.8 * brightness);
-    e.photoLuminance = e.photo.mean();
     const auto lamp = torch::tensor({left ? -2.5f : 2.5f, -3.5f, 0.5f}).reshape({1, 3});
     e.cells = lampCellTarget(lamp, 4.0, 8);
     e.mirroredCells = lampCellTarget(lamp, 4.0, 8, /*mirrored=*/true);
@@ -79,11 +78,7 @@ TEST(PretrainLampCells, TheClassifierLearnsWhichSideThePhotoIsLitFrom) {
     for (int i = 0; i < 16; ++i) training.push_back(sidedExample(i % 2 == 0, 0.5 + 0.1 * i));
     for (int i = 0; i < 4; ++i) heldOut.push_back(sidedExample(i % 2 == 1, 0.7 + 0.3 * i));
     // Not pretrained: the classifier says nothing (logits 0, the head as without it).
-    EXPECT_EQ(head->photoCellLogits(heldOut[0].photo, heldOut[0].photoLuminance)
-                  .abs()
-                  .max()
-                  .item<float>(),
-              0.0f);
+    EXPECT_EQ(head->photoCellLogits(heldOut[0].photo).abs().max().item<float>(), 0.0f);
     const auto whereBefore = head->where->weight.clone();
     LampCellPretraining options;
     options.epochs = 40;

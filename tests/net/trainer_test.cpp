@@ -202,6 +202,27 @@ TEST_F(TrainerTest, TheIrradianceWeightSteersTraining) {
     EXPECT_THROW(negative.validate(), InputError);
 }
 
+TEST_F(TrainerTest, AnUnclippedPhotoHeadTrainsOnTheRendersBeforeTheirClip) {
+    // The tiny set's examples carry ref.exr: a "+unclipped" head reads it (exposed, not
+    // clipped, not quantised), a plain photo head the photo made from it, so the same seed and
+    // data train different weights.
+    ASSERT_TRUE(fs::is_regular_file(fs::path(dataDir()) / "000000" / "ref.exr"));
+    std::ostringstream log;
+    EXPECT_GT(weightChangeOf(
+                  "lighthouse_trainer_unclipped", 0.0, 1.0,
+                  [](TrainOptions& o, double on) {
+                      NetConfig config = test::tinyHdrConfig();
+                      config.emitters = 3;
+                      config.emitterPhoto = true;
+                      config.emitterPhotoUnclipped = on > 0;
+                      o.configOverride = config;
+                      o.emitterCellWeight = 10;
+                  },
+                  log),
+              1e-6)
+        << "the head read the same photo either way";
+}
+
 TEST_F(TrainerTest, TheEmitterHeadsLossWeightsSteerTheHead) {
     // The tiny set's rooms have lamps in scene.json: with the lamp-position loss (a plain head),
     // the lamp-cell loss (a "+photo" head) or the lamp-light loss on, the head's gradients
