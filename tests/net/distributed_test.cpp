@@ -155,17 +155,8 @@ std::string readText(const std::string& path) {
     return s.str();
 }
 
-class DistributedTest : public ::testing::Test {
+class DistributedTest : public test::TinyTrainingSetTest {
 protected:
-    static void SetUpTestSuite() {
-        dataDir() = test::uniqueTempPath("lighthouse_distributed_test_data");
-        test::writeTinyTrainingSet(dataDir());
-    }
-    static void TearDownTestSuite() { fs::remove_all(dataDir()); }
-    static std::string& dataDir() {
-        static std::string path;
-        return path;
-    }
     static void removeOutputs(const std::string& out) {
         for (const std::string suffix : {"", ".csv", ".png", ".checkpoint"})
             fs::remove(out + suffix);

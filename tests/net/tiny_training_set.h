@@ -1,11 +1,15 @@
 // A training set small enough for unit tests: 3 synthetic examples of 64x48 with one 16x8
 // envmap and an oracle volume in tinyHdrConfig()'s layout, baked coarsely (seconds, not
-// minutes). Shared by the trainer and distributed-training suites.
+// minutes). Shared by the trainer, distributed-training and unclipped-photo suites.
 #pragma once
 
 #include "synth/dataset.h"
 #include "tests/net/net_test_scenes.h"
+#include "tests/support/temp_path.h"
 
+#include <gtest/gtest.h>
+
+#include <filesystem>
 #include <string>
 
 namespace lh::test {
@@ -30,5 +34,20 @@ inline void writeTinyTrainingSet(const std::string& dir) {
     o.oracleResolution = tinyHdrConfig().resolution;
     synth::writeDataset(o);
 }
+
+// A test suite over one tiny training set (dataDir()), written before its first test and
+// removed after its last.
+class TinyTrainingSetTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dataDir() = uniqueTempPath("lighthouse_tiny_training_set");
+        writeTinyTrainingSet(dataDir());
+    }
+    static void TearDownTestSuite() { std::filesystem::remove_all(dataDir()); }
+    static std::string& dataDir() {
+        static std::string path;
+        return path;
+    }
+};
 
 }  // namespace lh::test

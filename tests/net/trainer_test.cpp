@@ -25,18 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TrainerTest : public ::testing::Test {
+class TrainerTest : public test::TinyTrainingSetTest {
 protected:
-    static void SetUpTestSuite() {
-        dataDir() = test::uniqueTempPath("lighthouse_trainer_test_data");
-        test::writeTinyTrainingSet(dataDir());
-    }
-    static void TearDownTestSuite() { fs::remove_all(dataDir()); }
-    static std::string& dataDir() {
-        static std::string path;
-        return path;
-    }
-
     TrainOptions options(const std::string& name) const {
         TrainOptions o;
         o.data = dataDir();

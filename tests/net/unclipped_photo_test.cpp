@@ -120,18 +120,7 @@ TEST(UnclippedPhoto, ThePhotoHeadSeesThePhotoRelativeToItsOwnMean) {
     EXPECT_FALSE(torch::allclose(logits(photo), logits(photo.clamp_max(1.0)), 1e-4, 1e-5));
 }
 
-class UnclippedPretraining : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        dataDir() = test::uniqueTempPath("lighthouse_unclipped_photo_data");
-        test::writeTinyTrainingSet(dataDir());
-    }
-    static void TearDownTestSuite() { fs::remove_all(dataDir()); }
-    static std::string& dataDir() {
-        static std::string path;
-        return path;
-    }
-};
+class UnclippedPretraining : public test::TinyTrainingSetTest {};
 
 TEST_F(UnclippedPretraining, ReadsTheRenderForAnUnclippedHeadAndThePngOtherwise) {
     const fs::path example = fs::path(dataDir()) / "000000";
