@@ -3,11 +3,9 @@
 #include "core/dataset_files.h"
 #include "core/errors.h"
 #include "image/image_io.h"
-#include "image/resample.h"
 #include "net/config.h"
 #include "net/lighthouse_net.h"
 #include "net/losses.h"
-#include "net/tensor_image.h"
 #include "synth/scene_json.h"
 
 #include <algorithm>
@@ -108,12 +106,7 @@ LampCellExample loadLampCellExample(const std::string& directory, const NetConfi
     const bool unclipped =
         config.emitterPhotoUnclipped && fs::is_regular_file(dir / dataset::viewExr("ref"));
     const std::string view = unclipped ? dataset::viewExr("ref") : dataset::viewPng("ref");
-    // A NaN or infinity in a render would reach the classifier's every output; read as the
-    // pipeline reads them (makePairInputs).
-    e.photo = torch::nan_to_num(imageToTensor(resizeImage(readImage((dir / view).string()),
-                                                          config.width, config.height)),
-                                0.0, kMaxPhotoRadiance, 0.0)
-                  .clamp_min(0);
+    e.photo = photoRadianceTensor(readImage((dir / view).string()), config.width, config.height);
     e.cells = lampCellTarget(lamps, *cameras.far, kEmitterCellsPerSide);
     e.mirroredCells = lampCellTarget(lamps, *cameras.far, kEmitterCellsPerSide, /*mirrored=*/true);
     ok = true;

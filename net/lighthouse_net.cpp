@@ -193,6 +193,12 @@ PipelineOutput LighthouseNetImpl::run(const PairInputs& in, bool runCompletion) 
     return result;
 }
 
+torch::Tensor photoRadianceTensor(const ImageRGB& photo, int width, int height) {
+    return torch::nan_to_num(imageToTensor(resizeImage(photo, width, height)), 0.0,
+                             kMaxPhotoRadiance, 0.0)
+        .clamp_min(0);
+}
+
 PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const PinholeCamera& refCamera,
                           const PinholeCamera& srcCamera, double near, double far,
                           const NetConfig& config, const torch::Device& device) {
@@ -201,12 +207,8 @@ PairInputs makePairInputs(const ImageRGB& ref, const ImageRGB& src, const Pinhol
     in.src = srcCamera.resized(config.width, config.height);
     // A linear EXR photo keeps radiance above 1, which no network but a photo head that reads
     // it (NetConfig::emitterPhotoUnclipped) saw in training: the rest reads it clipped at 1, as
-    // a camera would have saved it. NaN and negative values read as 0, infinity as the largest
-    // half float (kMaxPhotoRadiance).
-    const auto refUnclipped =
-        torch::nan_to_num(imageToTensor(resizeImage(ref, config.width, config.height)), 0.0,
-                          kMaxPhotoRadiance, 0.0)
-            .clamp_min(0);
+    // a camera would have saved it.
+    const auto refUnclipped = photoRadianceTensor(ref, config.width, config.height);
     const auto refLinear = refUnclipped.clamp_max(1.0);
     const auto srcLinear = imageToTensor(resizeImage(src, config.width, config.height));
     in.refUnclipped = refUnclipped.to(device);

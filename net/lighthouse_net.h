@@ -71,6 +71,11 @@ struct LighthouseNetImpl : torch::nn::Module {
 };
 TORCH_MODULE(LighthouseNet);
 
+// A linear photo at the network's input size [1, 3, height, width], its radiance as the
+// pipeline reads it: NaN and negative values as 0, infinity as kMaxPhotoRadiance, nothing
+// clipped.
+torch::Tensor photoRadianceTensor(const ImageRGB& photo, int width, int height);
+
 // Network inputs for a pair of linear images at any size: resized to the configuration's input
 // size (intrinsics scaled), planes linear in disparity between near and far, and the layout
 // of the volume (docs/conventions.md#nested-volume-layout: s0 = 2 min(far, 20)).

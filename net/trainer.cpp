@@ -500,7 +500,7 @@ PreparedExample prepareExample(const std::string& directory, const NetConfig& co
                               *ex.cameras.far, config, device);
     if (!refUnclipped.pixels.empty())
         p.inputs.refUnclipped =
-            imageToTensor(resizeImage(refUnclipped, config.width, config.height)).to(device);
+            photoRadianceTensor(refUnclipped, config.width, config.height).to(device);
     p.target = ex.cameras.tgt->resized(config.width, config.height);
     p.targetImage = imageToTensor(resizeImage(ex.tgt, config.width, config.height)).to(device);
     if (unclipped)
