@@ -79,6 +79,15 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
             "evaluation in one process");
     std::vector<std::string> dirs = listExamples(o.data);
     if (o.maxScenes > 0 && int(dirs.size()) > o.maxScenes) dirs.resize(size_t(o.maxScenes));
+    // A missing render is found before any work or output; a render of the wrong size or with
+    // NaN only when its example is read.
+    if (o.unclippedPhotos)
+        for (const std::string& dir : dirs)
+            for (const char* view : {"ref", "src", "tgt"})
+                if (!fs::is_regular_file(fs::path(dir) / dataset::viewExr(view)))
+                    throw FileError("'" + dir + "' has no " + dataset::viewExr(view) +
+                                    ": --unclipped-photos needs each example's ref.exr, src.exr "
+                                    "and tgt.exr");
     PredictorOptions po;
     po.model = o.model;
     po.device = o.device;
@@ -126,8 +135,8 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         const ImageRGB savedRef = ex.ref;
         if (o.unclippedPhotos && !useUnclippedViews(ex))
             throw FileError("'" + dirs[s] +
-                            "' lacks ref.exr, src.exr or tgt.exr of its photos' size (or one "
-                            "holds NaN): --unclipped-photos needs them");
+                            "': its ref.exr, src.exr or tgt.exr is not of its photos' size, or "
+                            "holds NaN (--unclipped-photos)");
         StereoPair pair{ex.ref, ex.src, ex.cameras};
         const Prediction prediction = predictor.predict(pair);
         const RenderVolume ours(prediction.volume), mpiOnly(prediction.mpiOnly);

@@ -161,14 +161,18 @@ TEST(Evaluation, UnclippedPhotosReachTheModelAndAreRequiredWhereAsked) {
     EXPECT_NE(exr.markdown.find("`--unclipped-photos`"), std::string::npos) << exr.markdown;
     EXPECT_EQ(png.markdown.find("`--unclipped-photos`"), std::string::npos);
     fs::remove_all(run.out + "_png");
-    // An example without its source render: one error that names the option.
+    // An example without its source render: one error that names the option, before any
+    // output is written.
     fs::remove(fs::path(run.data) / "000001" / "src.exr");
+    fs::remove_all(run.out);
     try {
         evaluate(run.options, progress);
         FAIL() << "an example without src.exr was scored";
     } catch (const FileError& e) {
         EXPECT_NE(std::string(e.what()).find("--unclipped-photos"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("src.exr"), std::string::npos) << e.what();
     }
+    EXPECT_FALSE(fs::exists(run.out));
 }
 
 TEST(Evaluation, TheNotesSayHowOursWasPredicted) {
