@@ -21,7 +21,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -118,6 +120,27 @@ net::PredictorOptions predictorOptions(const PredictOptions& o, int threads) {
     po.highlightGain = o.highlightGain;
     po.highlightKnee = o.highlightKnee;
     return po;
+}
+
+// Whether the network reads what the reference photo holds above 1 (only an EXR photo holds
+// any): a user who gives one to a model that clips it, or a PNG to a model whose lamp head
+// would read it, should hear which.
+void notePhotoRadianceAboveOne(const ImageRGB& ref, const net::NetConfig& config) {
+    std::size_t above = 0;
+    for (const float value : ref.pixels) above += value > 1.f ? 1 : 0;
+    // Of the photo's channel values, to two decimals.
+    const double percent =
+        std::round(1e4 * double(above) / double(std::max<std::size_t>(1, ref.pixels.size()))) /
+        100.0;
+    if (above > 0 && !config.emitterPhotoUnclipped)
+        std::cerr << "predict: the reference photo's values above 1 (" << percent
+                  << "% of them) are read clipped at 1, as the model was trained\n";
+    else if (above > 0)
+        std::cerr << "predict: the lamp head reads the reference photo's values above 1 ("
+                  << percent << "% of them); the rest of the network reads them clipped at 1\n";
+    else if (config.emitterPhotoUnclipped)
+        std::cerr << "predict: note: this model's lamp head reads a photo's values above 1, and "
+                     "this one has none (give a linear EXR photo for it)\n";
 }
 
 // A knee only says where a gain starts: without a gain it changes nothing, which a user who
@@ -229,6 +252,7 @@ void runPredict(const PredictOptions& o, int threads) {
               << "' (config " << config.name << ": " << config.width << "x" << config.height
               << " input, " << config.planes << " planes, " << config.levels << " x "
               << config.resolution << "^3)\n";
+    notePhotoRadianceAboveOne(pair.ref, config);
     const net::Prediction p = predictor.predict(pair);
     if (p.rangeEstimated) {
         if (p.range.fallback)

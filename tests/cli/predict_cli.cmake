@@ -122,6 +122,16 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
     COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" --highlight-knee 1.5 -o pred_knee_alone.vdb 2>&1 | grep -q 'warning: --highlight-knee changes nothing without a gain'"
             ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/src.png ${LH_PAIR}/cameras.json)
   lighthouse_cli_properties(cli.warning.predict_knee_without_gain)
+  # An EXR photo pair of the example room (its lamps above 1): the bundled model reads it
+  # clipped, and says so; the PNG pair has nothing above 1 and hears nothing of it.
+  add_test(NAME cli.warning.predict_exr_photo_read_clipped
+    COMMAND bash -c "\"$0\" render-view example.vdb --cameras cameras.json --view ref -o exr_ref.exr > /dev/null && \"$0\" render-view example.vdb --cameras cameras.json --view src -o exr_src.exr > /dev/null && \"$0\" predict --ref exr_ref.exr --src exr_src.exr --cameras cameras.json -o pred_exr.vdb 2>&1 | grep -q 'values above 1 ([0-9.]*% of them) are read clipped at 1, as the model was trained'"
+            ${LH_CLI_EXE})
+  lighthouse_cli_properties(cli.warning.predict_exr_photo_read_clipped)
+  add_test(NAME cli.ok.predict_png_photo_says_nothing_of_clipping
+    COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" -o pred_png_quiet.vdb > /dev/null 2> pred_png_quiet.log && grep -q '^predict: network' pred_png_quiet.log && ! grep -q 'above 1' pred_png_quiet.log"
+            ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/src.png ${LH_PAIR}/cameras.json)
+  lighthouse_cli_properties(cli.ok.predict_png_photo_says_nothing_of_clipping)
   lighthouse_cli_ok(predict_output_is_a_volume
     STDOUT "5 level[(]s[)]" "density_L4, color_L4, finest yes"
     ARGS info pred_ok.vdb)
