@@ -10,11 +10,9 @@
 #include "net/lighthouse_net.h"
 #include "tests/net/net_test_scenes.h"
 #include "tests/net/tiny_training_set.h"
-#include "tests/support/temp_path.h"
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <filesystem>
 #include <limits>
 
