@@ -79,8 +79,11 @@ TEST(UnclippedPhoto, OnlyAnUnclippedHeadSeesHowBrightTheClippedLampIs) {
     const PinholeCamera ref = test::planeCamera(64, 32),
                         src = test::planeCamera(64, 32, Vec3d(0.2, 0.0, 0.0));
     const ImageRGB source = test::renderPlane(src, 2.0);
-    // Two EXR photos that clip to the same photo: a lamp at 1.5 and one at 60.
-    const ImageRGB dim = photoWithLamp(ref, 1.5f), bright = photoWithLamp(ref, 60.f);
+    // Two EXR photos that clip to the same photo: a lamp at 1.5 and one at 60; and that photo,
+    // as a PNG would give it.
+    const ImageRGB dim = photoWithLamp(ref, 1.5f), bright = photoWithLamp(ref, 60.f),
+                   png = photoWithLamp(ref, 1.f);
+    torch::Tensor pngLamps[2];  // the lamps' places from the PNG, without and with the suffix
     for (const bool unclipped : {false, true}) {
         const NetConfig config = photoHeadConfig(unclipped);
         torch::manual_seed(21);
@@ -96,7 +99,10 @@ TEST(UnclippedPhoto, OnlyAnUnclippedHeadSeesHowBrightTheClippedLampIs) {
         EXPECT_TRUE(torch::equal(a.mpi, b.mpi)) << "unclipped " << unclipped;
         const bool same = torch::allclose(a.emitters.cellLogits, b.emitters.cellLogits);
         EXPECT_EQ(same, !unclipped) << "unclipped " << unclipped;
+        pngLamps[unclipped] = run(png).emitters.cellLogits;
     }
+    // The same weights with and without the suffix: a PNG gives both the same lamps.
+    EXPECT_TRUE(torch::equal(pngLamps[0], pngLamps[1]));
 }
 
 TEST(UnclippedPhoto, ThePhotoHeadSeesThePhotoRelativeToItsOwnMean) {
