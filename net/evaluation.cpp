@@ -98,7 +98,17 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     po.highlightKnee = o.highlightKnee;
     const Predictor predictor(po);
     const NetConfig& config = predictor.config();
-    fs::create_directories(o.out);
+    // Made now, so that an unwritable place fails before the work; taken away again (if still
+    // empty) when the work fails, so that a failed eval leaves no empty folder behind.
+    struct NewFolderUnlessUsed {
+        fs::path path;
+        bool made = false, used = false;
+        ~NewFolderUnlessUsed() {
+            std::error_code ignored;
+            if (made && !used && fs::is_empty(path, ignored)) fs::remove(path, ignored);
+        }
+    } outFolder{o.out};
+    outFolder.made = fs::create_directories(o.out);
 
     // The oracle re-bakes each scene from its scene.json; a data set made elsewhere (dev_cycles)
     // has none, and a row over only some of its scenes would not compare with the others.
@@ -218,6 +228,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the
         // record that the merge reads.
         const std::string tag = o.shard.tag();
+        outFolder.used = true;
         const fs::path stripDir = fs::path(o.out) / ("sheet." + tag);
         fs::create_directories(stripDir);
         nlohmann::json strips = nlohmann::json::array();
@@ -256,6 +267,7 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
                  << "` writes table.md once every shard is done\n";
         return report;
     }
+    outFolder.used = true;
     writeTextFile((fs::path(o.out) / "table.md").string(), report.markdown);
     writeTextFile((fs::path(o.out) / "metrics.csv").string(), csv.str());
     if (!report.lamps.empty())

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 namespace lh::net {
@@ -173,6 +174,18 @@ TEST(Evaluation, UnclippedPhotosReachTheModelAndAreRequiredWhereAsked) {
         EXPECT_NE(std::string(e.what()).find("src.exr"), std::string::npos) << e.what();
     }
     EXPECT_FALSE(fs::exists(run.out));
+}
+
+TEST(Evaluation, AFailedEvalLeavesNoFolderItMade) {
+    UntrainedEval run("lighthouse_eval_fails", test::tinyHdrConfig(), 10);
+    std::ofstream(fs::path(run.data) / "000002" / "ref.png") << "not a photo";
+    std::ostringstream progress;
+    EXPECT_THROW(evaluate(run.options, progress), FileError);
+    EXPECT_FALSE(fs::exists(run.out)) << "the failed eval left its output folder";
+    // A folder the user made stays.
+    fs::create_directories(run.out);
+    EXPECT_THROW(evaluate(run.options, progress), FileError);
+    EXPECT_TRUE(fs::is_directory(run.out));
 }
 
 TEST(Evaluation, TheNotesSayHowOursWasPredicted) {
