@@ -83,11 +83,10 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     // NaN only when its example is read.
     if (o.unclippedPhotos)
         for (const std::string& dir : dirs)
-            for (const char* view : {"ref", "src", "tgt"})
-                if (!fs::is_regular_file(fs::path(dir) / dataset::viewExr(view)))
-                    throw FileError("'" + dir + "' has no " + dataset::viewExr(view) +
-                                    ": --unclipped-photos needs each example's ref.exr, src.exr "
-                                    "and tgt.exr");
+            if (const std::string missing = missingUnclippedView(dir); !missing.empty())
+                throw FileError("'" + dir + "' has no " + missing +
+                                ": --unclipped-photos needs each example's ref.exr, src.exr and "
+                                "tgt.exr");
     PredictorOptions po;
     po.model = o.model;
     po.device = o.device;
@@ -98,14 +97,15 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     po.highlightKnee = o.highlightKnee;
     const Predictor predictor(po);
     const NetConfig& config = predictor.config();
-    // Made now, so that an unwritable place fails before the work; taken away again (if still
-    // empty) when the work fails, so that a failed eval leaves no empty folder behind.
-    struct NewFolderUnlessUsed {
+    // Made now, so that an unwritable place fails before the work; taken away again if still
+    // empty when evaluate ends, which only a failure leaves it (every eval writes its files at
+    // the end), so that a failed eval leaves no empty folder behind.
+    struct FolderRemovedIfEmpty {
         fs::path path;
-        bool made = false, used = false;
-        ~NewFolderUnlessUsed() {
+        bool made = false;
+        ~FolderRemovedIfEmpty() {
             std::error_code ignored;
-            if (made && !used && fs::is_empty(path, ignored)) fs::remove(path, ignored);
+            if (made && fs::is_empty(path, ignored)) fs::remove(path, ignored);
         }
     } outFolder{o.out};
     outFolder.made = fs::create_directories(o.out);
@@ -228,7 +228,6 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         // The shard's share: exact metrics, the strips of its first contact-sheet rows and the
         // record that the merge reads.
         const std::string tag = o.shard.tag();
-        outFolder.used = true;
         const fs::path stripDir = fs::path(o.out) / ("sheet." + tag);
         fs::create_directories(stripDir);
         nlohmann::json strips = nlohmann::json::array();
@@ -267,7 +266,6 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
                  << "` writes table.md once every shard is done\n";
         return report;
     }
-    outFolder.used = true;
     writeTextFile((fs::path(o.out) / "table.md").string(), report.markdown);
     writeTextFile((fs::path(o.out) / "metrics.csv").string(), csv.str());
     if (!report.lamps.empty())

@@ -53,6 +53,9 @@ std::vector<std::uint8_t> observedMask(const fs::path& dir, const EnvmapSample& 
     }
 }
 
+// The three photos of an example, each also rendered unclipped as VIEW.exr.
+const char* const kPhotoViews[3] = {"ref", "src", "tgt"};
+
 }  // namespace
 
 std::vector<std::string> listExamples(const std::string& dataDir) {
@@ -94,15 +97,20 @@ TrainingExample loadExample(const std::string& directory, bool withMasks) {
     return ex;
 }
 
+std::string missingUnclippedView(const std::string& directory) {
+    for (const char* view : kPhotoViews)
+        if (!fs::is_regular_file(fs::path(directory) / dataset::viewExr(view)))
+            return dataset::viewExr(view);
+    return "";
+}
+
 bool useUnclippedViews(TrainingExample& ex) {
     const fs::path dir(ex.directory);
-    const char* views[3] = {"ref", "src", "tgt"};
     ImageRGB* images[3] = {&ex.ref, &ex.src, &ex.tgt};
-    for (const char* view : views)
-        if (!fs::is_regular_file(dir / dataset::viewExr(view))) return false;
+    if (!missingUnclippedView(ex.directory).empty()) return false;
     ImageRGB unclipped[3];
     for (int v = 0; v < 3; ++v) {
-        unclipped[v] = readImage((dir / dataset::viewExr(views[v])).string());
+        unclipped[v] = readImage((dir / dataset::viewExr(kPhotoViews[v])).string());
         if (unclipped[v].width != images[v]->width || unclipped[v].height != images[v]->height)
             return false;
         // A NaN would survive the clip and reach the network; the PNG is the safer photo.

@@ -40,4 +40,8 @@ TrainingExample loadExample(const std::string& directory, bool withMasks = false
 // EXR is unreadable.
 bool useUnclippedViews(TrainingExample& ex);
 
+// The first of an example folder's unclipped renders (ref.exr, src.exr, tgt.exr) that it lacks,
+// as a file name; empty when it has all three.
+std::string missingUnclippedView(const std::string& directory);
+
 }  // namespace lh::net

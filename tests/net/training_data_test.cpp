@@ -174,6 +174,7 @@ TEST(TrainingData, UnclippedViewsReplaceThePngsWhereAllThreeExist) {
         writePng(png, (dir / (std::string(view) + ".png")).string());
         writeExr(exr, (dir / (std::string(view) + ".exr")).string());
     }
+    EXPECT_EQ(missingUnclippedView(dir.string()), "");
     TrainingExample ex = loadExample(dir.string());
     EXPECT_FLOAT_EQ(ex.ref.at(0, 0)[0], 1.f);  // what predict and eval see
     ASSERT_TRUE(useUnclippedViews(ex));
@@ -190,6 +191,7 @@ TEST(TrainingData, UnclippedViewsReplaceThePngsWhereAllThreeExist) {
     EXPECT_FALSE(useUnclippedViews(withNan));
     EXPECT_FLOAT_EQ(withNan.ref.at(0, 0)[0], 1.f);
     fs::remove(dir / "tgt.exr");
+    EXPECT_EQ(missingUnclippedView(dir.string()), "tgt.exr");
     TrainingExample partial = loadExample(dir.string());
     EXPECT_FALSE(useUnclippedViews(partial));
     EXPECT_FLOAT_EQ(partial.ref.at(0, 0)[0], 1.f);
