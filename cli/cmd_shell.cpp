@@ -1,6 +1,7 @@
 // `lighthouse shell IN.vdb -o OUT.vdb [--centre X,Y,Z] [--half] [--mantissa-bits N]`: collapses
 // a predicted volume's medium into an opaque shell as seen from one point (render/radial_shell.h),
-// so that envmaps near that point render several times faster. The MPI is passed on unchanged.
+// so that envmaps near that point render several times faster; the medium the reference camera
+// saw is kept as it is. The MPI is passed on unchanged.
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "cli/common_options.h"
@@ -57,10 +58,13 @@ void runShell(const ShellOptions& o) {
     warnOfHalfClamping(saveVdb(o.output, &shell, in.mpi ? &*in.mpi : nullptr,
                                VolumeSaveOptions{o.half, o.mantissaBits}),
                        "--half");
-    std::printf("shell around (%g, %g, %g) in %.2f s: %llu -> %llu active voxels -> %s\n", c.x(),
-                c.y(), c.z(), seconds,
+    std::printf("shell around (%g, %g, %g) in %.2f s: %llu -> %llu active voxels -> %s (%s)\n",
+                c.x(), c.y(), c.z(), seconds,
                 static_cast<unsigned long long>(in.volume.activeVoxelCount()),
-                static_cast<unsigned long long>(shell.activeVoxelCount()), o.output.c_str());
+                static_cast<unsigned long long>(shell.activeVoxelCount()), o.output.c_str(),
+                keepsCameraView(in.volume, {})
+                    ? "the medium the reference camera sees kept as it was"
+                    : "the file has no reference camera: all of the medium collapsed");
 }
 
 }  // namespace

@@ -139,6 +139,8 @@ Prediction Predictor::predict(const StereoPair& pair) const {
     result.volume = cubesToVolume(
         expandHighlightsInCubes(out.cubes, impl_->highlightGain, impl_->highlightKnee),
         inputs.layout, impl_->pruneAlpha);
+    // Before the shell, which keeps the medium this camera sees.
+    result.volume.refCamera = cams.ref;
     if (impl_->shell)
         result.volume = collapseToShell(result.volume, defaultShellCentre(inputs.layout));
     if (out.emitters.position.defined()) {
@@ -154,7 +156,6 @@ Prediction Predictor::predict(const StereoPair& pair) const {
     }
     result.mpiOnly = cubesToVolume(out.mpiCubes, inputs.layout);
     result.mpi = tensorToMpi(out.mpi, inputs.ref, inputs.depths);
-    result.volume.refCamera = cams.ref;
     result.mpiOnly.refCamera = cams.ref;
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -105,7 +105,32 @@ CubeView lookFromCentre(const RenderVolume& source, const Vec3d& centre,
     return view;
 }
 
+// The medium of one level at a voxel centre `p` (scene units) of the same layout.
+MediumSample mediumAt(const VolumeLevel& level, const Vec3d& p) {
+    const openvdb::Coord ijk = level.transform().worldToIndexCellCentered(p);
+    MediumSample s;
+    s.sigma = level.density->tree().getValue(ijk);
+    s.color = level.color->tree().getValue(ijk);
+    return s;
+}
+
+// `volume` without the medium `camera` sees: what the shell's centre collapses when the camera's
+// view is kept.
+LightingVolume outsideCameraView(const LightingVolume& volume, const PinholeCamera& camera) {
+    LightingVolume rest = LightingVolume::fromLayout(*volume.layout);
+    for (int k = 0; k < volume.layout->levels; ++k)
+        rest.fillLevel(k, [&](const Vec3d& p) -> MediumSample {
+            if (camera.projectIntoImage(p)) return {};
+            return mediumAt(volume.levels[k], p);
+        });
+    return rest;
+}
+
 }  // namespace
+
+bool keepsCameraView(const LightingVolume& volume, const RadialShellOptions& options) {
+    return options.keepCameraView && volume.refCamera.has_value();
+}
 
 LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre,
                                const RadialShellOptions& options) {
@@ -127,7 +152,9 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
         throw InputError(text);
     }
 
-    const RenderVolume source(volume);
+    // With the camera's view kept, the centre looks only at the medium that is collapsed.
+    const PinholeCamera* keptView = keepsCameraView(volume, options) ? &*volume.refCamera : nullptr;
+    const RenderVolume source(keptView ? outsideCameraView(volume, *keptView) : volume);
     const CubeView view = lookFromCentre(source, centre, options);
     LightingVolume shell = LightingVolume::fromLayout(layout);
     shell.refCamera = volume.refCamera;
@@ -137,6 +164,7 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
         // A voxel's own alpha is 0.99: a ray from anywhere stops in the layer.
         const float opaqueSigma = float(-std::log(0.01) / voxel);
         shell.fillLevel(k, [&](const Vec3d& p) -> MediumSample {
+            if (keptView && keptView->projectIntoImage(p)) return mediumAt(volume.levels[k], p);
             const Vec3d offset = p - centre;
             const double r = offset.length();
             if (!(r > 0.0)) return {};

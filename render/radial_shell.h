@@ -14,6 +14,13 @@
 // saw. Skirts close those gaps: a voxel behind its own direction's layer is filled when a
 // neighbouring voxel's direction sees its layer farther out, so such rays meet a wall instead
 // of the black behind the volume.
+//
+// The medium inside the reference camera's view is kept as it is (where the volume has a
+// camera). The photo saw it: it holds the room's observed surfaces, spread over a few voxels in
+// depth, and the points where objects are inserted look at it. Collapsed onto one depth per
+// direction from c, it shifts with parallax for every other point. Only the medium the camera
+// did not see, the completion's fog around and behind it, which is most of what the rays cross,
+// becomes the layer.
 #pragma once
 
 #include "core/vec.h"
@@ -29,6 +36,10 @@ struct RadialShellOptions {
     double minAlpha = 1e-4;
     // The centre looks along the pixel centres of a cube map of this many pixels per face side.
     int directionsPerFace = 128;
+    // Keep the medium inside the view of the volume's reference camera (LightingVolume::
+    // refCamera: in front of it and projecting into its image) as it is, and collapse the rest.
+    // Ignored for a volume without a reference camera, which is collapsed whole.
+    bool keepCameraView = true;
 
     // Throws InputError for a half-width outside [0.5, 8], a minAlpha outside [0, 1) or
     // directions per face outside [8, 2048].
@@ -40,10 +51,14 @@ struct RadialShellOptions {
 // the camera itself for a one-level layout.
 Vec3d defaultShellCentre(const VolumeLayout& layout);
 
-// The shell of `volume` around `centre` (in the volume's frame), on the same layout. Needs a
-// volume with a layout (predicted volumes); throws InputError otherwise or if the centre lies
-// outside level 0.
+// The shell of `volume` around `centre` (in the volume's frame), on the same layout, with the
+// reference camera's view kept as options.keepCameraView says. Needs a volume with a layout
+// (predicted volumes); throws InputError otherwise or if the centre lies outside level 0.
 LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre,
                                const RadialShellOptions& options = {});
+
+// Whether collapseToShell keeps a camera's view of `volume` under `options`: it asks for it and
+// the volume has a reference camera.
+bool keepsCameraView(const LightingVolume& volume, const RadialShellOptions& options);
 
 }  // namespace lh

@@ -17,7 +17,7 @@ lighthouse_cli_error(shell_centre_not_a_point
   ABSENT shell_nan.vdb
   ARGS shell example.vdb --centre 1,nan,0 -o shell_nan.vdb)
 lighthouse_cli_ok(shell_example
-  STDOUT "shell around [(]0, 0, 1[.]75[)] in .* s: [0-9]+ -> [0-9]+ active voxels -> shell_example[.]vdb"
+  STDOUT "shell around [(]0, 0, 1[.]75[)] in .* s: [0-9]+ -> [0-9]+ active voxels -> shell_example[.]vdb [(]the medium the reference camera sees kept as it was[)]"
   FILES shell_example.vdb
   ARGS shell example.vdb -o shell_example.vdb)
 lighthouse_cli_ok(shell_example_is_a_volume

@@ -202,6 +202,38 @@ TEST_F(PredictionTest, ShellKeepsTheEnvmapSeenFromItsCentre) {
     EXPECT_GT(std::sqrt(black / n) / (sum / n), 0.9);
 }
 
+TEST_F(PredictionTest, ShellKeepsThePredictedMediumTheReferenceCameraSees) {
+    PredictorOptions shellOptions{modelPath(), "cpu", 2, ""};
+    shellOptions.shell = true;
+    StereoPair pair = planePair(0.2);
+    pair.cameras.near = 1.0;
+    pair.cameras.far = 4.0;
+    const Prediction fog = predictor.predict(pair), shell = Predictor(shellOptions).predict(pair);
+    ASSERT_TRUE(shell.volume.refCamera.has_value());
+    const PinholeCamera& camera = *shell.volume.refCamera;
+    // Every voxel of the prediction in the camera's view is in the shell as it was; of those
+    // outside it, the shell keeps at most a layer.
+    long long seen = 0, unseenBefore = 0, unseenAfter = 0;
+    for (size_t k = 0; k < fog.volume.levels.size(); ++k) {
+        const auto& level = fog.volume.levels[k];
+        const auto& shellDensity = shell.volume.levels[k].density->tree();
+        for (auto it = level.density->cbeginValueOn(); it; ++it) {
+            const Vec3d p = level.transform().indexToWorld(it.getCoord());
+            if (camera.projectIntoImage(p)) {
+                ++seen;
+                EXPECT_EQ(shellDensity.getValue(it.getCoord()), *it);
+            } else {
+                ++unseenBefore;
+            }
+        }
+        for (auto it = shell.volume.levels[k].density->cbeginValueOn(); it; ++it)
+            if (!camera.projectIntoImage(level.transform().indexToWorld(it.getCoord())))
+                ++unseenAfter;
+    }
+    EXPECT_GT(seen, 1000);
+    EXPECT_LT(unseenAfter, unseenBefore / 2);
+}
+
 // How many of a prediction's colour voxels lie above the knee, above white up to the knee, and
 // at or below white.
 struct VoxelLuminances {

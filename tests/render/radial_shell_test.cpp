@@ -124,5 +124,75 @@ TEST(RadialShell, RefusesWhatItCannotCollapse) {
     EXPECT_THROW(collapseToShell(foreign, Vec3d(0)), InputError);
 }
 
+// A camera at the origin looking along +z, 64x48 pixels with a 77 degree wide view: it sees
+// the fog in front of the default centre (0, 0, 1) and none of the fog behind it.
+PinholeCamera forwardCamera() {
+    PinholeCamera camera;
+    camera.width = 64;
+    camera.height = 48;
+    camera.fx = camera.fy = 40.0;
+    camera.cx = 32.0;
+    camera.cy = 24.0;
+    return camera;
+}
+
+// Envmap at `from` of each volume, and its relative RMSE against the first's.
+double envmapErrorFrom(const Vec3d& from, const LightingVolume& truth, const LightingVolume& test) {
+    const EnvmapOptions options{120, 60, MarchOptions{}};
+    return relativeRmse(renderEnvmap(RenderVolume(test), from, options),
+                        renderEnvmap(RenderVolume(truth), from, options));
+}
+
+TEST(RadialShell, KeepsTheMediumTheCameraSeesAsItIs) {
+    const Vec3d centre = defaultShellCentre(smallLayout());
+    LightingVolume fog = onSmallLayout([&](const Vec3d& p) { return fogAround(centre, p); });
+    fog.refCamera = forwardCamera();
+    const LightingVolume shell = collapseToShell(fog, centre);
+    RadialShellOptions collapseAll;
+    collapseAll.keepCameraView = false;
+    const LightingVolume collapsed = collapseToShell(fog, centre, collapseAll);
+    EXPECT_TRUE(keepsCameraView(fog, {}));
+    EXPECT_FALSE(keepsCameraView(fog, collapseAll));
+
+    // Fog the camera sees (ahead, in its blue half, 2.06 units from the centre) is kept as it
+    // was: density 0.5 per unit, blue. Collapsed, the same place holds an opaque layer.
+    const Vec3d seen(-0.5, 0.0, 3.0);
+    const RenderSample keptSample = RenderVolume(shell).sampleWorld(seen);
+    EXPECT_NEAR(keptSample.sigma, 0.5f, 1e-6);
+    EXPECT_NEAR(keptSample.emission[2], 0.5f, 1e-6);  // sigma x blue 1
+    EXPECT_GT(std::abs(RenderVolume(collapsed).sampleWorld(seen).sigma - 0.5f), 0.1f);
+    // Fog behind the camera, which it does not see, is collapsed all the same.
+    const Vec3d unseen(0.0, 0.0, -1.0);
+    EXPECT_GT(std::abs(RenderVolume(shell).sampleWorld(unseen).sigma - 0.5f), 0.1f);
+    EXPECT_LT(shell.activeVoxelCount(), fog.activeVoxelCount());
+    EXPECT_GT(shell.activeVoxelCount(), collapsed.activeVoxelCount());
+
+    // Seen from the centre the shell gives the fog's envmap.
+    EXPECT_LT(envmapErrorFrom(centre, fog, shell), 0.05);
+    // From another point, a ray that crosses the fog in the camera's view at a slant, from its
+    // red half (x > 0) into its blue half, gathers both as before; the collapsed layer gives it
+    // the one colour the centre saw where the ray meets it.
+    const Vec3d aside = centre + Vec3d(0.6, 0.3, 0.3);
+    const Vec3d slant = Vec3d(-0.25, 0.0, 1.0).unit();
+    const RayResult before = marchRay(RenderVolume(fog), aside, slant, MarchOptions{});
+    const RayResult kept = marchRay(RenderVolume(shell), aside, slant, MarchOptions{});
+    const RayResult flat = marchRay(RenderVolume(collapsed), aside, slant, MarchOptions{});
+    ASSERT_GT(before.radiance[0], 0.05);
+    ASSERT_GT(before.radiance[2], 0.05);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(kept.radiance[c], before.radiance[c], 1e-3) << c;
+    EXPECT_GT(std::abs(flat.radiance[0] - before.radiance[0]) +
+                  std::abs(flat.radiance[2] - before.radiance[2]),
+              0.1);
+}
+
+TEST(RadialShell, WithoutACameraCollapsesEverything) {
+    const Vec3d centre = defaultShellCentre(smallLayout());
+    const LightingVolume fog = onSmallLayout([&](const Vec3d& p) { return fogAround(centre, p); });
+    ASSERT_FALSE(fog.refCamera);
+    EXPECT_FALSE(keepsCameraView(fog, {}));
+    const LightingVolume shell = collapseToShell(fog, centre);
+    EXPECT_GT(std::abs(RenderVolume(shell).sampleWorld(Vec3d(0.0, 0.0, 3.0)).sigma - 0.5f), 0.1f);
+}
+
 }  // namespace
 }  // namespace lh
