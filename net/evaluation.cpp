@@ -83,10 +83,10 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
     // NaN only when its example is read.
     if (o.unclippedPhotos)
         for (const std::string& dir : dirs)
-            if (const std::string missing = missingUnclippedView(dir); !missing.empty())
+            if (const std::string missing = missingUnclippedView(dir, UnclippedViews::RefAndSrc);
+                !missing.empty())
                 throw FileError("'" + dir + "' has no " + missing +
-                                ": --unclipped-photos needs each example's ref.exr, src.exr and "
-                                "tgt.exr");
+                                ": --unclipped-photos needs each example's ref.exr and src.exr");
     PredictorOptions po;
     po.model = o.model;
     po.device = o.device;
@@ -143,10 +143,10 @@ EvalReport evaluate(const EvalOptions& o, std::ostream& progress) {
         TrainingExample ex = loadExample(dirs[s], /*withMasks=*/true);
         // The global envmap's colour stays the saved photo's mean; the model reads the renders.
         const ImageRGB savedRef = ex.ref;
-        if (o.unclippedPhotos && !useUnclippedViews(ex))
+        if (o.unclippedPhotos && !useUnclippedViews(ex, UnclippedViews::RefAndSrc))
             throw FileError("'" + dirs[s] +
-                            "': its ref.exr, src.exr or tgt.exr is not of its photos' size, or "
-                            "holds NaN (--unclipped-photos)");
+                            "': its ref.exr or src.exr is not of its photos' size, or holds NaN "
+                            "(--unclipped-photos)");
         StereoPair pair{ex.ref, ex.src, ex.cameras};
         const Prediction prediction = predictor.predict(pair);
         const RenderVolume ours(prediction.volume), mpiOnly(prediction.mpiOnly);

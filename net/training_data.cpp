@@ -97,19 +97,27 @@ TrainingExample loadExample(const std::string& directory, bool withMasks) {
     return ex;
 }
 
-std::string missingUnclippedView(const std::string& directory) {
-    for (const char* view : kPhotoViews)
-        if (!fs::is_regular_file(fs::path(directory) / dataset::viewExr(view)))
-            return dataset::viewExr(view);
+namespace {
+
+// How many of kPhotoViews (ref, src, tgt, in that order) `views` reads.
+int viewCount(UnclippedViews views) { return views == UnclippedViews::RefAndSrc ? 2 : 3; }
+
+}  // namespace
+
+std::string missingUnclippedView(const std::string& directory, UnclippedViews views) {
+    for (int v = 0; v < viewCount(views); ++v)
+        if (!fs::is_regular_file(fs::path(directory) / dataset::viewExr(kPhotoViews[v])))
+            return dataset::viewExr(kPhotoViews[v]);
     return "";
 }
 
-bool useUnclippedViews(TrainingExample& ex) {
+bool useUnclippedViews(TrainingExample& ex, UnclippedViews views) {
     const fs::path dir(ex.directory);
     ImageRGB* images[3] = {&ex.ref, &ex.src, &ex.tgt};
-    if (!missingUnclippedView(ex.directory).empty()) return false;
+    if (!missingUnclippedView(ex.directory, views).empty()) return false;
+    const int count = viewCount(views);
     ImageRGB unclipped[3];
-    for (int v = 0; v < 3; ++v) {
+    for (int v = 0; v < count; ++v) {
         unclipped[v] = readImage((dir / dataset::viewExr(kPhotoViews[v])).string());
         if (unclipped[v].width != images[v]->width || unclipped[v].height != images[v]->height)
             return false;
@@ -117,7 +125,7 @@ bool useUnclippedViews(TrainingExample& ex) {
         for (const float value : unclipped[v].pixels)
             if (std::isnan(value)) return false;
     }
-    for (int v = 0; v < 3; ++v) *images[v] = std::move(unclipped[v]);
+    for (int v = 0; v < count; ++v) *images[v] = std::move(unclipped[v]);
     return true;
 }
 

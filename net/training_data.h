@@ -32,16 +32,22 @@ std::vector<std::string> listExamples(const std::string& dataDir);
 // reference view's z-depth, ref_depth.exr (dev_cycles) or depth.exr (lighthouse synth).
 TrainingExample loadExample(const std::string& directory, bool withMasks = false);
 
-// Replaces ref, src and tgt by the example's linear EXR renders (ref.exr, src.exr, tgt.exr)
-// where it has all three, of the PNGs' sizes and free of NaN; returns whether it did.
+// Which of an example's views have their renders read: training reads all three (the held-out
+// target too); eval, like predict, only the reference and source photos the model sees.
+enum class UnclippedViews { RefAndSrc, RefSrcAndTgt };
+
+// Replaces ref, src and (for RefSrcAndTgt) tgt by the example's linear EXR renders (ref.exr,
+// src.exr, tgt.exr) where it has each, of the PNGs' sizes and free of NaN; returns whether it
+// did (all or none).
 // Training augments exposure: a camera that exposes a scene 0.6x still clips its windows at 1,
 // but a clipped PNG scaled by 0.6 shows them as flat grey at 0.6, which no camera gives, and
 // which hides where the photo saturated from the network's HDR boost. Throws FileError if an
 // EXR is unreadable.
-bool useUnclippedViews(TrainingExample& ex);
+bool useUnclippedViews(TrainingExample& ex, UnclippedViews views = UnclippedViews::RefSrcAndTgt);
 
-// The first of an example folder's unclipped renders (ref.exr, src.exr, tgt.exr) that it lacks,
-// as a file name; empty when it has all three.
-std::string missingUnclippedView(const std::string& directory);
+// The first of an example folder's unclipped renders (ref.exr, src.exr and, for RefSrcAndTgt,
+// tgt.exr) that it lacks, as a file name; empty when it has them all.
+std::string missingUnclippedView(const std::string& directory,
+                                 UnclippedViews views = UnclippedViews::RefSrcAndTgt);
 
 }  // namespace lh::net

@@ -195,6 +195,14 @@ TEST(TrainingData, UnclippedViewsReplaceThePngsWhereAllThreeExist) {
     TrainingExample partial = loadExample(dir.string());
     EXPECT_FALSE(useUnclippedViews(partial));
     EXPECT_FLOAT_EQ(partial.ref.at(0, 0)[0], 1.f);
+    // Reading only the pair (as eval does), the target's render is not needed.
+    writeExr(exr, (dir / "src.exr").string());
+    EXPECT_EQ(missingUnclippedView(dir.string(), UnclippedViews::RefAndSrc), "");
+    TrainingExample pairOnly = loadExample(dir.string());
+    ASSERT_TRUE(useUnclippedViews(pairOnly, UnclippedViews::RefAndSrc));
+    EXPECT_FLOAT_EQ(pairOnly.ref.at(0, 0)[0], 4.f);
+    EXPECT_FLOAT_EQ(pairOnly.src.at(0, 0)[0], 4.f);
+    EXPECT_FLOAT_EQ(pairOnly.tgt.at(0, 0)[0], 1.f);
     writeExr(ImageRGB(20, 15), (dir / "tgt.exr").string());
     EXPECT_FALSE(useUnclippedViews(partial));
     EXPECT_FLOAT_EQ(partial.ref.at(0, 0)[0], 1.f);
