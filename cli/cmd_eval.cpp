@@ -12,6 +12,7 @@ namespace lh::cli {
 void addEvalCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<net::EvalOptions>();
     o->hdriDir = LIGHTHOUSE_HDRI_DIR;
+    o->shell = true;  // as predict
     CLI::App* cmd = app.add_subcommand("eval", netCommandDescription("eval"));
     cmd->add_option(
            "--data", o->data,
@@ -34,7 +35,9 @@ void addEvalCommand(CLI::App& app, const int& threads) {
     cmd->add_option("--prune-alpha", o->pruneAlpha,
                     "As predict's --prune-alpha (default: the model's, as predict's)")
         ->check(CLI::Range(0.0f, 1.0f));
-    cmd->add_flag("--shell", o->shell, "As predict's --shell");
+    cmd->add_flag("--shell,!--no-shell", o->shell,
+                  "As predict's --shell (the default; --no-shell scores the predicted fog as it "
+                  "is)");
     cmd->add_option("--highlight-gain", o->highlightGain,
                     "As predict's --highlight-gain (default: the model's, as predict's)")
         ->check(CLI::Range(1.0, net::kMaxHighlightGain));

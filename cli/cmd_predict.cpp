@@ -43,11 +43,11 @@ struct PredictOptions {
     bool alsoPng = false;
     float exposure = 1.f;
     bool half = false;
-    int mantissaBits = 0;                // 0: values as the network gives them
-    float pruneAlpha = -1;               // the model's (net/predictor.h)
-    bool shell = false;                  // collapse the volume into a shell (net/predictor.h)
-    double highlightGain = -1;           // the model's (net/predictor.h)
-    double highlightKnee = 1;            // where the gain starts (net/predictor.h)
+    int mantissaBits = 0;       // 0: values as the network gives them
+    float pruneAlpha = -1;      // the model's (net/predictor.h)
+    bool shell = true;          // collapse the unseen medium into a shell (net/predictor.h)
+    double highlightGain = -1;  // the model's (net/predictor.h)
+    double highlightKnee = 1;   // where the gain starts (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
 };
 
@@ -327,11 +327,12 @@ void addPredictCommand(CLI::App& app, const int& threads) {
         "Batch: K/N, predict only pair i with i mod N = K (0-based) and write a shard record; "
         "`lighthouse merge OUT` writes predictions.json of all shards");
     cmd->add_option("--model", o->model, "Model file (default: the bundled model)");
-    cmd->add_flag("--shell", o->shell,
+    cmd->add_flag("--shell,!--no-shell", o->shell,
                   "Collapse the predicted medium the reference camera did not see into an opaque "
                   "shell as seen from the middle of the room, keeping what it saw as predicted: "
-                  "envmaps render about three times faster, as accurate on average "
-                  "(docs/network.md, \"The shell\")");
+                  "envmaps render about three times faster, as accurate on average (the default; "
+                  "--no-shell writes the predicted fog as it is, e.g. to study or edit it; "
+                  "docs/network.md, \"The shell\")");
     cmd->add_option("--highlight-gain", o->highlightGain,
                     "Multiply what each voxel holds above white by this, hue kept: the lamps and "
                     "windows the model shows only a little brighter than white get back the light "

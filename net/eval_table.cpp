@@ -200,8 +200,9 @@ std::string evalPredictionNotes(double highlightGain, double highlightKnee, bool
         notes << "\n\"ours\": what each predicted voxel holds above luminance " << highlightKnee
               << ", times " << highlightGain << " (`--highlight-gain`, `--highlight-knee`).\n";
     if (shell)
-        notes << "\n\"ours\": every predicted volume collapsed into an opaque shell "
-                 "(`--shell`, docs/network.md).\n";
+        notes << "\n\"ours\": what each predicted volume's camera did not see collapsed into an "
+                 "opaque shell (the default of `--shell`; `--no-shell` scores the fog; "
+                 "docs/network.md).\n";
     if (unclippedPhotos)
         notes << "\n\"ours\": predicted from each example's linear renders (ref.exr, src.exr), "
                  "not its PNG photos (`--unclipped-photos`).\n";

@@ -8,7 +8,7 @@
 #   oracle     the true light of synthetic test example 000001 (`synth --split test --seed 0
 #              --count 2`, then `oracle`), 5 x 64^3, with ground-truth envmaps;
 #   example    the bundled procedural example room (`make-example`), 5 x 64^3;
-#   predicted  the bundled model's prediction for data/demo_pair (5 x 64^3), with the pair's
+#   predicted  the bundled model's fog for data/demo_pair (5 x 64^3, `predict --no-shell`), with the pair's
 #              ground-truth envmaps; skipped, with a note, in a build without lighthouse-net.
 # Per volume: `bench-envmap` (OUT/<volume>/speed/speed_error.{csv,md,svg}) and `bench-sparsity`
 # (OUT/<volume>/memory/memory_error.{csv,md,svg}, memory_breakdown.{csv,md}). Then
@@ -64,9 +64,10 @@ fi
 volumes=(oracle example)
 datasets=("$out/test/000001" "")
 if "$bin" predict --help >/dev/null 2>&1; then
-  pair=data/demo_pair  # the same command as scripts/demo.sh
+  # The network's own medium, the hard case (docs/performance.md), not predict's default shell.
+  pair=data/demo_pair
   [ -f "$out/predicted.vdb" ] || "$bin" predict --ref "$pair/ref.png" --src "$pair/src.png" \
-    --cameras "$pair/cameras.json" -o "$out/predicted.vdb" >&2
+    --cameras "$pair/cameras.json" --no-shell -o "$out/predicted.vdb" >&2
   volumes+=(predicted)
   datasets+=("$pair")
 else

@@ -202,7 +202,8 @@ TEST(Evaluation, TheNotesSayHowOursWasPredicted) {
               std::string::npos);
     // A knee without a gain changes nothing, so it is not noted.
     EXPECT_EQ(evalPredictionNotes(1.0, 1.25, false), "");
-    EXPECT_NE(evalPredictionNotes(1.0, 1.0, true).find("`--shell`"), std::string::npos);
+    EXPECT_NE(evalPredictionNotes(1.0, 1.0, true).find("`--no-shell` scores the fog"),
+              std::string::npos);
     EXPECT_NE(evalPredictionNotes(1.0, 1.0, false, true).find("`--unclipped-photos`"),
               std::string::npos);
 }

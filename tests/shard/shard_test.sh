@@ -46,6 +46,11 @@ if [ "$net" = --net ]; then
     for f in table.md metrics.csv contact_sheet.png; do same_file eval_one/$f eval_two/$f; done
     expect_error "merged already" lh merge eval_two
     echo "eval: 2 shards + merge = one run"
+    # Like predict, eval collapses the fog the camera did not see by default; --no-shell does not.
+    grep -q "collapsed into an opaque shell" eval_one/table.md || fail "eval did not shell by default"
+    lh eval --data one --no-oracle --no-shell -o eval_fog >/dev/null 2>&1
+    ! grep -q "collapsed into an opaque shell" eval_fog/table.md || fail "eval --no-shell shelled"
+    echo "eval: the shell by default, the fog with --no-shell"
 
     # The merged table keeps the note on how "ours" was predicted.
     gain=(--highlight-gain 10 --highlight-knee 1.5)
