@@ -80,7 +80,7 @@ void addShellCommand(CLI::App& app) {
     cmd->add_option("--centre", o->centre,
                     "X,Y,Z: the point the shell is seen from, e.g. where an object will be "
                     "inserted (default: on the camera's axis, a quarter of the way into level 1, "
-                    "as predict --shell)");
+                    "as predict's default shell)");
     addHalfFlag(cmd, o->half);
     addMantissaBitsOption(cmd, o->mantissaBits,
                           "Round every value to N mantissa bits (1-22; 1-9 with --half) for a "
