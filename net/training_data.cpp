@@ -56,6 +56,9 @@ std::vector<std::uint8_t> observedMask(const fs::path& dir, const EnvmapSample& 
 // The three photos of an example, each also rendered unclipped as VIEW.exr.
 const char* const kPhotoViews[3] = {"ref", "src", "tgt"};
 
+// How many of kPhotoViews (ref, src, tgt, in that order) `views` reads.
+int viewCount(UnclippedViews views) { return views == UnclippedViews::RefAndSrc ? 2 : 3; }
+
 }  // namespace
 
 std::vector<std::string> listExamples(const std::string& dataDir) {
@@ -96,13 +99,6 @@ TrainingExample loadExample(const std::string& directory, bool withMasks) {
     if (ex.envmaps.empty()) throw FileError("'" + directory + "' has no ground-truth envmaps");
     return ex;
 }
-
-namespace {
-
-// How many of kPhotoViews (ref, src, tgt, in that order) `views` reads.
-int viewCount(UnclippedViews views) { return views == UnclippedViews::RefAndSrc ? 2 : 3; }
-
-}  // namespace
 
 std::string missingUnclippedView(const std::string& directory, UnclippedViews views) {
     for (int v = 0; v < viewCount(views); ++v)

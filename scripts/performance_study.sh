@@ -8,8 +8,9 @@
 #   oracle     the true light of synthetic test example 000001 (`synth --split test --seed 0
 #              --count 2`, then `oracle`), 5 x 64^3, with ground-truth envmaps;
 #   example    the bundled procedural example room (`make-example`), 5 x 64^3;
-#   predicted  the bundled model's fog for data/demo_pair (5 x 64^3, `predict --no-shell`), with the pair's
-#              ground-truth envmaps; skipped, with a note, in a build without lighthouse-net.
+#   predicted  the bundled model's fog for data/demo_pair (5 x 64^3, `predict --no-shell`),
+#              with the pair's ground-truth envmaps; skipped, with a note, in a build without
+#              lighthouse-net.
 # Per volume: `bench-envmap` (OUT/<volume>/speed/speed_error.{csv,md,svg}) and `bench-sparsity`
 # (OUT/<volume>/memory/memory_error.{csv,md,svg}, memory_breakdown.{csv,md}). Then
 # OUT/summary.md: the machine, the commit, each run's targets and the plots; it is printed too.

@@ -136,13 +136,6 @@ PinholeCamera forwardCamera() {
     return camera;
 }
 
-// Envmap at `from` of each volume, and its relative RMSE against the first's.
-double envmapErrorFrom(const Vec3d& from, const LightingVolume& truth, const LightingVolume& test) {
-    const EnvmapOptions options{120, 60, MarchOptions{}};
-    return relativeRmse(renderEnvmap(RenderVolume(test), from, options),
-                        renderEnvmap(RenderVolume(truth), from, options));
-}
-
 TEST(RadialShell, KeepsTheMediumTheCameraSeesAsItIs) {
     const Vec3d centre = defaultShellCentre(smallLayout());
     LightingVolume fog = onSmallLayout([&](const Vec3d& p) { return fogAround(centre, p); });
@@ -168,7 +161,10 @@ TEST(RadialShell, KeepsTheMediumTheCameraSeesAsItIs) {
     EXPECT_GT(shell.activeVoxelCount(), collapsed.activeVoxelCount());
 
     // Seen from the centre the shell gives the fog's envmap.
-    EXPECT_LT(envmapErrorFrom(centre, fog, shell), 0.05);
+    const EnvmapOptions options{120, 60, MarchOptions{}};
+    EXPECT_LT(relativeRmse(renderEnvmap(RenderVolume(shell), centre, options),
+                           renderEnvmap(RenderVolume(fog), centre, options)),
+              0.05);
     // From another point, a ray that crosses the fog in the camera's view at a slant, from its
     // red half (x > 0) into its blue half, gathers both as before; the collapsed layer gives it
     // the one colour the centre saw where the ray meets it.
