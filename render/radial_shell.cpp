@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -159,23 +158,6 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
     const CubeView view = lookFromCentre(source, centre, options);
     LightingVolume shell = LightingVolume::fromLayout(layout);
     shell.refCamera = volume.refCamera;
-    // EXPERIMENT hook (not to commit): a ceiling prior above the centre.
-    const char* ceilA = std::getenv("LH_CEIL_A");
-    const double ceilCos = ceilA ? std::cos(std::atof(ceilA) * M_PI / 180.0) : 2.0;
-    const double ceilG = std::getenv("LH_CEIL_G") ? std::atof(std::getenv("LH_CEIL_G")) : 1.0;
-    const int ceilMode = std::getenv("LH_CEIL_MODE") ? std::atoi(std::getenv("LH_CEIL_MODE")) : 0;
-    double meanLum = 0.0;
-    {
-        int n = 0;
-        CubeView& v = const_cast<CubeView&>(view);
-        for (int p = 0; p < v.pixelCount(); ++p) {
-            const SeenFromCentre& s = v.at(p);
-            if (!(s.alpha > 0.f)) continue;
-            meanLum += 0.2126 * s.color[0] + 0.7152 * s.color[1] + 0.0722 * s.color[2];
-            ++n;
-        }
-        meanLum = n ? meanLum / n : 0.0;
-    }
     for (int k = 0; k < layout.levels; ++k) {
         const double voxel = layout.voxelSize(k);                  // scene units
         const double halfWidth = options.halfWidthVoxels * voxel;  // scene units
@@ -202,20 +184,6 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
             MediumSample out;
             out.sigma = opaqueSigma;
             out.color = s.color;
-            if (-(offset.y() / r) >= ceilCos) {
-                if (ceilMode == 2) {
-                    const double t = (-(offset.y() / r) - ceilCos) / (1.0 - ceilCos);
-                    out.color = s.color * float(1.0 + (ceilG - 1.0) * t);
-                } else if (ceilMode == 1) {
-                    out.color = s.color * float(ceilG);
-                } else {
-                    const double lum =
-                        0.2126 * s.color[0] + 0.7152 * s.color[1] + 0.0722 * s.color[2];
-                    const double target = ceilG * meanLum;
-                    if (lum < target && lum > 0.0) out.color = s.color * float(target / lum);
-                    else if (lum <= 0.0) out.color = openvdb::Vec3s(float(target));
-                }
-            }
             return out;
         });
     }
