@@ -30,6 +30,11 @@ void printInfo(const InfoOptions& o) {
     if (volume.refCamera)
         std::printf("reference camera: %dx%d, fx %.2f fy %.2f\n", volume.refCamera->width,
                     volume.refCamera->height, volume.refCamera->fx, volume.refCamera->fy);
+    if (volume.shellCentre)
+        std::printf(
+            "shell: the medium collapsed around (%g, %g, %g) (predict's default; "
+            "predict --no-shell writes the fog)\n",
+            volume.shellCentre->x(), volume.shellCentre->y(), volume.shellCentre->z());
     for (std::size_t k = 0; k < volume.levels.size(); ++k) {
         const VolumeLevel& l = volume.levels[k];
         const WorldBox box = l.worldBounds();

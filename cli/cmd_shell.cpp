@@ -40,6 +40,15 @@ void runShell(const ShellOptions& o) {
         throw InputError("'" + o.input +
                          "' has no nested layout (lighthouse_layout metadata): only volumes "
                          "written by predict or make-example can be collapsed into a shell");
+    if (const std::optional<Vec3d>& done = in.volume.shellCentre) {
+        char text[512];
+        std::snprintf(text, sizeof text,
+                      "'%s' is already a shell, collapsed around (%g, %g, %g) (predict's "
+                      "default): collapsing it again cannot bring back the medium that shell "
+                      "dropped; collapse the fog of 'lighthouse predict --no-shell' instead",
+                      o.input.c_str(), done->x(), done->y(), done->z());
+        throw InputError(text);
+    }
     const Vec3d c = centre ? *centre : defaultShellCentre(*in.volume.layout);
     if (centre && in.volume.layout->box(0).contains(c)) {
         // Inside a wall or an object every ray from the centre stops at once, and the shell
@@ -75,7 +84,10 @@ void addShellCommand(CLI::App& app) {
         "shell",
         "Collapse a predicted volume's medium into an opaque shell seen from one point: the same "
         "envmap there, several times faster envmaps around it");
-    cmd->add_option("input", o->input, "Lighting volume written by predict (.vdb)")->required();
+    cmd->add_option("input", o->input,
+                    "Lighting volume on the nested layout (.vdb): the fog of predict --no-shell, "
+                    "or make-example's room; not a shell (predict's default output is one)")
+        ->required();
     cmd->add_option("-o,--output", o->output, "Output .vdb")->required();
     cmd->add_option("--centre", o->centre,
                     "X,Y,Z: the point the shell is seen from, e.g. where an object will be "

@@ -271,6 +271,9 @@ DccExportReport exportForDcc(const LightingVolume& volume, const std::string& ou
         if (volume.layout) manifest["layout"] = nlohmann::json::parse(volume.layout->toJson());
         if (volume.refCamera)
             manifest["ref_camera"] = nlohmann::json::parse(cameraToJson(*volume.refCamera));
+        if (volume.shellCentre)
+            manifest["shell_centre"] = {volume.shellCentre->x(), volume.shellCentre->y(),
+                                        volume.shellCentre->z()};
         nlohmann::json levels = nlohmann::json::array();
         for (std::size_t k = 0; k < shells.size(); ++k) {
             const LevelGrids g = convertShell(shells[k], int(k), conv, options, report.clamp);

@@ -418,6 +418,18 @@ LightingVolume importFromDcc(const std::string& dirText, Dcc dcc, DccImportRepor
     }
     if (manifest.contains("ref_camera") && manifest["ref_camera"].is_object())
         volume.refCamera = cameraFromJson(manifest["ref_camera"].dump(), dirText + ": ref_camera");
+    if (manifest.contains("shell_centre")) {
+        const nlohmann::json& c = manifest["shell_centre"];
+        const auto finite = [](const nlohmann::json& v) {
+            return v.is_number() && std::isfinite(v.get<double>());
+        };
+        if (c.is_array() && c.size() == 3 && finite(c[0]) && finite(c[1]) && finite(c[2]))
+            volume.shellCentre = Vec3d(c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
+        else
+            warnings.push_back("'" + dirText +
+                               "': the manifest's shell_centre is not three finite numbers; "
+                               "ignored");
+    }
     if (manifest.contains("mpi")) {
         const fs::path path = fileInExport(manifest["mpi"], dir, "the \"mpi\"");
         report.mpi = readMpi(path.string(), exportId, manifestPath);

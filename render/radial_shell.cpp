@@ -158,6 +158,7 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
     const CubeView view = lookFromCentre(source, centre, options);
     LightingVolume shell = LightingVolume::fromLayout(layout);
     shell.refCamera = volume.refCamera;
+    shell.shellCentre = centre;
     for (int k = 0; k < layout.levels; ++k) {
         const double voxel = layout.voxelSize(k);                  // scene units
         const double halfWidth = options.halfWidthVoxels * voxel;  // scene units

@@ -54,6 +54,7 @@ Vec3d defaultShellCentre(const VolumeLayout& layout);
 // The shell of `volume` around `centre` (in the volume's frame), on the same layout, with the
 // reference camera's view kept as options.keepCameraView says. Needs a volume with a layout
 // (predicted volumes); throws InputError otherwise or if the centre lies outside level 0.
+// The shell records `centre` as its shellCentre, so that files say they hold a shell.
 LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre,
                                const RadialShellOptions& options = {});
 

@@ -119,6 +119,9 @@ void LightingVolume::validate() const {
                              l.color->getName() + "' have different transforms");
         if (l.domain.empty()) throw InputError(name + " covers no voxels");
     }
+    if (shellCentre && !(std::isfinite(shellCentre->x()) && std::isfinite(shellCentre->y()) &&
+                         std::isfinite(shellCentre->z())))
+        throw InputError("the shell's centre is not a finite point");
 }
 
 openvdb::Index64 LightingVolume::activeVoxelCount() const {

@@ -42,6 +42,9 @@ public:
     std::vector<VolumeLevel> levels;         // coarsest first; finest last
     std::optional<VolumeLayout> layout;      // set when the volume follows the nested layout
     std::optional<PinholeCamera> refCamera;  // set when known (predicted volumes)
+    // Set on a shell (render/radial_shell.h): the point, in scene units, its medium was
+    // collapsed around. Collapsing a shell again cannot bring back what the first one dropped.
+    std::optional<Vec3d> shellCentre;
 
     // Empty levels of a layout with transforms and domains set.
     static LightingVolume fromLayout(const VolumeLayout& layout);

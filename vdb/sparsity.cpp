@@ -218,6 +218,7 @@ LightingVolume sparsify(const LightingVolume& volume, const SparsityOptions& opt
     LightingVolume out;
     out.layout = volume.layout;
     out.refCamera = volume.refCamera;
+    out.shellCentre = volume.shellCentre;
     std::size_t keep = volume.levels.size();
     if (options.maxLevels > 0 && std::size_t(options.maxLevels) < keep) keep = options.maxLevels;
     s.levelsDropped += int(volume.levels.size() - keep);

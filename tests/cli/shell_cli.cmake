@@ -23,8 +23,19 @@ lighthouse_cli_ok(shell_example
 lighthouse_cli_ok(shell_example_is_a_volume
   STDOUT "3 level[(]s[)]"
   ARGS info shell_example.vdb)
+# A shell says it is one, and is not collapsed again: the layer has dropped what lay behind it.
+lighthouse_cli_ok(shell_example_says_it_is_a_shell
+  STDOUT "shell: the medium collapsed around [(]0, 0, 1[.]75[)]"
+  ARGS info shell_example.vdb)
+lighthouse_cli_error(shell_of_a_shell
+  EXPECT "'shell_example[.]vdb' is already a shell, collapsed around [(]0, 0, 1[.]75[)].*the fog of 'lighthouse predict --no-shell'"
+  ABSENT shell_again.vdb
+  ARGS shell shell_example.vdb --centre 0.5,0,2 -o shell_again.vdb)
 set_tests_properties(cli.ok.shell_example PROPERTIES FIXTURES_SETUP lighthouse_shell)
-set_tests_properties(cli.ok.shell_example_is_a_volume PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_shell")
+foreach(t cli.ok.shell_example_is_a_volume cli.ok.shell_example_says_it_is_a_shell
+          cli.error.shell_of_a_shell)
+  set_tests_properties(${t} PROPERTIES FIXTURES_REQUIRED "lighthouse_cli;lighthouse_shell")
+endforeach()
 # A centre inside a wall (the example room's red wall, near x = -2.6) still runs, with a warning
 # that says why the shell will be wrong and what to choose instead.
 add_test(NAME cli.warning.shell_centre_inside_a_wall

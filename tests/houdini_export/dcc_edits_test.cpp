@@ -358,5 +358,27 @@ TEST(DccEdits, TheMpiGoesOutAndComesBack) {
     }
 }
 
+// A shell's centre (the point predict collapsed its medium around) goes out in the manifest and
+// comes back; a manifest whose centre is not three finite numbers loses it with one warning.
+TEST(DccEdits, AShellsCentreGoesOutAndComesBack) {
+    LightingVolume shell = makeExampleVolume(3, 16);
+    shell.shellCentre = Vec3d(0.25, -0.5, 1.75);
+    const fs::path dir = freshDir("shell_centre");
+    exportForDcc(shell, dir.string(), {Dcc::Blender});
+    DccImportReport report;
+    const LightingVolume back = importFromDcc(dir.string(), Dcc::Blender, &report);
+    EXPECT_TRUE(report.warnings.empty());
+    ASSERT_TRUE(back.shellCentre.has_value());
+    EXPECT_EQ(*back.shellCentre, *shell.shellCentre);
+
+    nlohmann::json m = readJson(dir / kDccManifestName);
+    m["shell_centre"] = {0.25, "up", 1.75};
+    writeJson(dir / kDccManifestName, m);
+    const LightingVolume damaged = importFromDcc(dir.string(), Dcc::Blender, &report);
+    EXPECT_FALSE(damaged.shellCentre.has_value());
+    EXPECT_TRUE(contains(report.warnings, "shell_centre is not three finite numbers"));
+    fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace lh

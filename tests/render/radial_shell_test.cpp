@@ -190,5 +190,14 @@ TEST(RadialShell, WithoutACameraCollapsesEverything) {
     EXPECT_GT(std::abs(RenderVolume(shell).sampleWorld(Vec3d(0.0, 0.0, 3.0)).sigma - 0.5f), 0.1f);
 }
 
+TEST(RadialShell, TheShellRecordsItsCentre) {
+    const Vec3d centre = defaultShellCentre(smallLayout()) + Vec3d(0.1, -0.2, 0.0);
+    const LightingVolume fog = onSmallLayout([&](const Vec3d& p) { return fogAround(centre, p); });
+    ASSERT_FALSE(fog.shellCentre);
+    const LightingVolume shell = collapseToShell(fog, centre);
+    ASSERT_TRUE(shell.shellCentre);
+    EXPECT_EQ(*shell.shellCentre, centre);
+}
+
 }  // namespace
 }  // namespace lh

@@ -76,6 +76,29 @@ TEST(VolumeIo, RoundTripIsBitExact) {
     EXPECT_EQ(*back.layout, *v.layout);
     ASSERT_TRUE(back.refCamera.has_value());
     EXPECT_EQ(back.refCamera->fx, v.refCamera->fx);
+    EXPECT_FALSE(back.shellCentre.has_value());  // the example is no shell
+}
+
+// A shell says so: the point it was collapsed around comes back; a damaged one is an error.
+TEST(VolumeIo, AShellKeepsItsCentre) {
+    LightingVolume v = makeExampleVolume(2, 24);
+    v.shellCentre = Vec3d(0.25, -0.5, 1.75);
+    const std::string path = tempPath("shell_centre.vdb");
+    saveVolume(path, v);
+    const LightingVolume back = loadVolume(path);
+    ASSERT_TRUE(back.shellCentre.has_value());
+    EXPECT_EQ(*back.shellCentre, *v.shellCentre);
+
+    v.shellCentre = Vec3d(std::nan(""), 0.0, 0.0);
+    EXPECT_THROW(saveVolume(tempPath("nan_centre.vdb"), v), InputError);
+    EXPECT_FALSE(fs::exists(tempPath("nan_centre.vdb")));
+
+    const std::string damaged = tempPath("damaged_centre.vdb");
+    openvdb::MetaMap meta;
+    meta.insertMeta("lighthouse_shell_centre", openvdb::Vec3DMetadata(openvdb::Vec3d(0, NAN, 0)));
+    openvdb::initialize();
+    openvdb::io::File(damaged).write({v.levels[0].density, v.levels[0].color}, meta);
+    expectFileError(damaged, "lighthouse_shell_centre is not a finite point");
 }
 
 TEST(VolumeIo, HalfPrecisionIsSmallerAndClose) {
