@@ -5,6 +5,7 @@
 #include "core/errors.h"
 #include "tests/support/test_volumes.h"
 #include "tests/vdb/sparsity_volumes.h"
+#include "vdb/example_volume.h"
 #include "vdb/volume_io.h"
 
 #include <gtest/gtest.h>
@@ -58,6 +59,18 @@ TEST(Sparsity, VoxelsBelowTheBoundAreDroppedAndTheRestKept) {
     EXPECT_EQ(activeDensityVoxels(sparsify(bright, o)), 8u * 8 * 8);
     // The input is untouched.
     EXPECT_EQ(activeDensityVoxels(v), 40u * 40 * 40);
+}
+
+// What a file says about the volume travels with it: a sparsified shell is still a shell.
+TEST(Sparsity, KeepsTheCameraAndTheShellsCentre) {
+    LightingVolume v = makeExampleVolume(2, 16);
+    v.shellCentre = Vec3d(0.0, 0.1, 1.5);
+    SparsityOptions o;
+    o.tau = 0.1;
+    const LightingVolume s = sparsify(v, o);
+    ASSERT_TRUE(s.refCamera && s.shellCentre);
+    EXPECT_EQ(s.refCamera->fx, v.refCamera->fx);
+    EXPECT_EQ(*s.shellCentre, *v.shellCentre);
 }
 
 TEST(Sparsity, MemoryBreakdownAddsUpToTheGrids) {
