@@ -32,7 +32,7 @@ void printInfo(const InfoOptions& o) {
                     volume.refCamera->height, volume.refCamera->fx, volume.refCamera->fy);
     if (volume.shellCentre)
         std::printf(
-            "shell: the medium collapsed around (%g, %g, %g) (predict's default; "
+            "shell: the medium collapsed around (%g, %g, %g) (as predict does by default; "
             "predict --no-shell writes the fog)\n",
             volume.shellCentre->x(), volume.shellCentre->y(), volume.shellCentre->z());
     for (std::size_t k = 0; k < volume.levels.size(); ++k) {

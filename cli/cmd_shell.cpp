@@ -43,9 +43,9 @@ void runShell(const ShellOptions& o) {
     if (const std::optional<Vec3d>& done = in.volume.shellCentre) {
         char text[512];
         std::snprintf(text, sizeof text,
-                      "'%s' is already a shell, collapsed around (%g, %g, %g) (predict's "
-                      "default): collapsing it again cannot bring back the medium that shell "
-                      "dropped; collapse the fog of 'lighthouse predict --no-shell' instead",
+                      "'%s' is already a shell, collapsed around (%g, %g, %g): collapsing it "
+                      "again cannot bring back the medium that shell dropped; collapse the fog "
+                      "of 'lighthouse predict --no-shell' instead",
                       o.input.c_str(), done->x(), done->y(), done->z());
         throw InputError(text);
     }

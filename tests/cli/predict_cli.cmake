@@ -134,7 +134,7 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
   lighthouse_cli_properties(cli.ok.predict_png_photo_says_nothing_of_clipping)
   lighthouse_cli_ok(predict_output_is_a_volume
     STDOUT "5 level[(]s[)]" "density_L4, color_L4, finest yes"
-           "shell: the medium collapsed around [(]0, 0, [0-9.]+[)] [(]predict's default"
+           "shell: the medium collapsed around [(]0, 0, [0-9.]+[)] [(]as predict does by default"
     ARGS info pred_ok.vdb)
   # --mantissa-bits 7 rounds the volume and the MPI: the same prediction in a smaller file.
   add_test(NAME cli.ok.predict_mantissa_bits_smaller
