@@ -140,8 +140,7 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
             "collapsing into a shell needs a volume on the nested layout "
             "(a predicted volume); this one has no layout");
     const VolumeLayout& layout = *volume.layout;
-    if (!std::isfinite(centre.x()) || !std::isfinite(centre.y()) || !std::isfinite(centre.z()) ||
-        !layout.box(0).contains(centre)) {
+    if (!centre.isFinite() || !layout.box(0).contains(centre)) {
         const WorldBox box = layout.box(0);
         char text[256];
         std::snprintf(text, sizeof text,

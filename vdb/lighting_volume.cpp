@@ -119,8 +119,7 @@ void LightingVolume::validate() const {
                              l.color->getName() + "' have different transforms");
         if (l.domain.empty()) throw InputError(name + " covers no voxels");
     }
-    if (shellCentre && !(std::isfinite(shellCentre->x()) && std::isfinite(shellCentre->y()) &&
-                         std::isfinite(shellCentre->z())))
+    if (shellCentre && !shellCentre->isFinite())
         throw InputError("the shell's centre is not a finite point");
 }
 

@@ -196,10 +196,8 @@ VolumeSaveReport saveVdb(const std::string& path, const LightingVolume* volume, 
             fileMeta.insertMeta("lighthouse_ref_camera",
                                 openvdb::StringMetadata(cameraToJson(*volume->refCamera)));
         if (volume->shellCentre)
-            fileMeta.insertMeta(
-                "lighthouse_shell_centre",
-                openvdb::Vec3DMetadata(openvdb::Vec3d(
-                    volume->shellCentre->x(), volume->shellCentre->y(), volume->shellCentre->z())));
+            fileMeta.insertMeta("lighthouse_shell_centre",
+                                openvdb::Vec3DMetadata(*volume->shellCentre));
         for (std::size_t k = 0; k < volume->levels.size(); ++k) {
             const VolumeLevel& level = volume->levels[k];
             const auto density = gridToSave(level.density, options, report.valuesClampedToHalf);
@@ -318,12 +316,11 @@ LightingVolume volumeFromContents(const VdbContents& contents, const std::string
     if (auto cam = meta.getMetadata<openvdb::StringMetadata>("lighthouse_ref_camera"))
         volume.refCamera = cameraFromJson(cam->value(), path + ": lighthouse_ref_camera");
     if (auto centre = meta.getMetadata<openvdb::Vec3DMetadata>("lighthouse_shell_centre")) {
-        const openvdb::Vec3d& c = centre->value();
-        if (!std::isfinite(c.x()) || !std::isfinite(c.y()) || !std::isfinite(c.z()))
+        if (!centre->value().isFinite())
             throw FileError("'" + path +
                             "': lighthouse_shell_centre is not a finite point; the file is "
                             "damaged, write it again with lighthouse predict or shell");
-        volume.shellCentre = Vec3d(c.x(), c.y(), c.z());
+        volume.shellCentre = centre->value();
     }
     return volume;
 }
