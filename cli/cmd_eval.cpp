@@ -12,7 +12,7 @@ namespace lh::cli {
 void addEvalCommand(CLI::App& app, const int& threads) {
     auto o = std::make_shared<net::EvalOptions>();
     o->hdriDir = LIGHTHOUSE_HDRI_DIR;
-    o->shell = true;  // as predict
+    o->shell = kShellByDefault;
     CLI::App* cmd = app.add_subcommand("eval", netCommandDescription("eval"));
     cmd->add_option(
            "--data", o->data,

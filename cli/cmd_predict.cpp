@@ -43,11 +43,11 @@ struct PredictOptions {
     bool alsoPng = false;
     float exposure = 1.f;
     bool half = false;
-    int mantissaBits = 0;       // 0: values as the network gives them
-    float pruneAlpha = -1;      // the model's (net/predictor.h)
-    bool shell = true;          // collapse the unseen medium into a shell (net/predictor.h)
-    double highlightGain = -1;  // the model's (net/predictor.h)
-    double highlightKnee = 1;   // where the gain starts (net/predictor.h)
+    int mantissaBits = 0;          // 0: values as the network gives them
+    float pruneAlpha = -1;         // the model's (net/predictor.h)
+    bool shell = kShellByDefault;  // collapse the unseen medium into a shell (net/predictor.h)
+    double highlightGain = -1;     // the model's (net/predictor.h)
+    double highlightKnee = 1;      // where the gain starts (net/predictor.h)
     std::string pairs, examples, shard;  // batch form
 };
 

@@ -25,6 +25,11 @@ inline constexpr NetCommand kNetCommands[] = {
 };
 const char* netCommandDescription(const char* name);
 
+// Whether predict and eval collapse the medium the camera did not see into a shell when neither
+// --shell nor --no-shell is given (docs/network.md, "The shell"). The library's options keep the
+// fog by default, so that tests and benchmarks of the network measure what it predicts.
+inline constexpr bool kShellByDefault = true;
+
 // The network command a command line runs (its command word, cli/command_word.h), or
 // nullptr. `--threads N` may come before or after it: both are handed over as they are.
 const char* netCommandIn(int argc, char** argv);

@@ -8,14 +8,6 @@
 
 namespace lh::net {
 
-namespace {
-
-bool finite(const Vec3d& v) {
-    return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
-}
-
-}  // namespace
-
 std::vector<std::uint8_t> observedMaskFromDepth(const ImageRGB& positions,
                                                 const PinholeCamera& reference,
                                                 const ImageRGB& refDepth,
@@ -29,7 +21,7 @@ std::vector<std::uint8_t> observedMaskFromDepth(const ImageRGB& positions,
     for (std::size_t p = 0; p < mask.size(); ++p) {
         const float* v = &positions.pixels[3 * p];
         const Vec3d world(v[0], v[1], v[2]);
-        if (!finite(world)) continue;
+        if (!world.isFinite()) continue;
         const std::optional<Vec3d> pixel = reference.projectIntoImage(world);
         if (!pixel) continue;
         const double depth = refDepth.at(int(pixel->x()), int(pixel->y()))[0];
