@@ -9,8 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,61 +74,6 @@ private:
     std::vector<SeenFromCentre> seen_;
 };
 
-SeenFromCentre lookAlong(const RenderVolume& source, const RenderVolume::RayOrigin& origin,
-                         const Vec3d& dir, const RadialShellOptions& options) {
-    const MarchOptions whole;
-    SeenFromCentre s;
-    const RayResult seen = marchRay(source, origin, dir, whole);
-    const double alpha = 1.0 - seen.transmittance;
-    if (!(alpha >= options.minAlpha) || alpha <= 0.0) return s;
-    MarchOptions half = whole;
-    half.surfaceTransmittance = 1.0 - 0.5 * alpha;
-    half.minTransmittance = half.surfaceTransmittance;
-    const double depth = marchRay(source, origin, dir, half).surfaceDistance;
-    if (!std::isfinite(depth)) return s;
-    s.alpha = float(alpha);
-    s.depth = float(depth);
-    for (int c = 0; c < 3; ++c) s.color[c] = float(seen.radiance[c]);
-    return s;
-}
-
-struct CameraLook {
-    int w = 0, h = 0;
-    std::vector<SeenFromCentre> px;
-};
-
-CameraLook lookFromCamera(const RenderVolume& source, const PinholeCamera& cam,
-                          const RadialShellOptions& options) {
-    CameraLook look;
-    look.w = cam.width, look.h = cam.height;
-    look.px.resize(std::size_t(cam.width) * cam.height);
-    const RenderVolume::RayOrigin origin = source.rayOrigin(cam.position);
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, cam.height), [&](const tbb::blocked_range<int>& rows) {
-            for (int v = rows.begin(); v != rows.end(); ++v)
-                for (int u = 0; u < cam.width; ++u)
-                    look.px[std::size_t(v) * cam.width + u] =
-                        lookAlong(source, origin, cam.pixelDirection(u + 0.5, v + 0.5), options);
-        });
-    return look;
-}
-
-LightingVolume insideCameraView(const LightingVolume& volume, const PinholeCamera& camera) {
-    LightingVolume rest = LightingVolume::fromLayout(*volume.layout);
-    for (int k = 0; k < volume.layout->levels; ++k)
-        rest.fillLevel(k, [&](const Vec3d& p) -> MediumSample {
-            static const int maxLevel =
-                getenv("LH_VIEW_MAXLEVEL") ? atoi(getenv("LH_VIEW_MAXLEVEL")) : 99;
-            if (k > maxLevel || !camera.projectIntoImage(p)) return {};
-            const openvdb::Coord ijk = volume.levels[k].transform().worldToIndexCellCentered(p);
-            MediumSample s;
-            s.sigma = volume.levels[k].density->tree().getValue(ijk);
-            s.color = volume.levels[k].color->tree().getValue(ijk);
-            return s;
-        });
-    return rest;
-}
-
 CubeView lookFromCentre(const RenderVolume& source, const Vec3d& centre,
                         const RadialShellOptions& options) {
     CubeView view(options.directionsPerFace);
@@ -186,7 +129,6 @@ LightingVolume outsideCameraView(const LightingVolume& volume, const PinholeCame
 }  // namespace
 
 bool keepsCameraView(const LightingVolume& volume, const RadialShellOptions& options) {
-    if (getenv("LH_KEEP_VIEW") && atoi(getenv("LH_KEEP_VIEW")) == 0) return false;
     return options.keepCameraView && volume.refCamera.has_value();
 }
 
@@ -213,63 +155,16 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
     const PinholeCamera* keptView = keepsCameraView(volume, options) ? &*volume.refCamera : nullptr;
     const RenderVolume source(keptView ? outsideCameraView(volume, *keptView) : volume);
     const CubeView view = lookFromCentre(source, centre, options);
-    const bool layerView = keptView && getenv("LH_VIEW_LAYER") && atoi(getenv("LH_VIEW_LAYER")) > 0;
-    CameraLook camLook;
-    if (layerView)
-        camLook =
-            lookFromCamera(RenderVolume(insideCameraView(volume, *keptView)), *keptView, options);
     LightingVolume shell = LightingVolume::fromLayout(layout);
     shell.refCamera = volume.refCamera;
     shell.shellCentre = centre;
     for (int k = 0; k < layout.levels; ++k) {
-        const double voxel = layout.voxelSize(k);  // scene units
-        const double halfWidth =
-            (getenv("LH_LAYER_HW") ? atof(getenv("LH_LAYER_HW")) : options.halfWidthVoxels) *
-            voxel;  // scene units
+        const double voxel = layout.voxelSize(k);                  // scene units
+        const double halfWidth = options.halfWidthVoxels * voxel;  // scene units
         // A voxel's own alpha is 0.99: a ray from anywhere stops in the layer.
-        const double lhA = getenv("LH_LAYER_T") ? atof(getenv("LH_LAYER_T")) : 0.01;
-        const float opaqueSigma = float(-std::log(lhA) / voxel);
+        const float opaqueSigma = float(-std::log(0.01) / voxel);
         shell.fillLevel(k, [&](const Vec3d& p) -> MediumSample {
-            if (keptView) {
-                const std::optional<Vec3d> pix = keptView->projectIntoImage(p);
-                static const int maxLevel =
-                    getenv("LH_VIEW_MAXLEVEL") ? atoi(getenv("LH_VIEW_MAXLEVEL")) : 99;
-                if (pix && (!layerView || k > maxLevel)) return mediumAt(volume.levels[k], p);
-                if (pix) {
-                    const auto at = [&](const Vec3d& x) -> const SeenFromCentre* {
-                        const std::optional<Vec3d> q = keptView->projectIntoImage(x);
-                        if (!q) return nullptr;
-                        return &camLook.px[std::size_t(int(q->y())) * camLook.w + int(q->x())];
-                    };
-                    const SeenFromCentre& s = *at(p);
-                    const double r = (p - keptView->position).length();
-                    static const double vhw =
-                        getenv("LH_VIEW_HW") ? atof(getenv("LH_VIEW_HW")) : 1.5;
-                    static const double keepBelow =
-                        getenv("LH_VIEW_KEEP") ? atof(getenv("LH_VIEW_KEEP")) : 0.0;
-                    if (s.alpha < keepBelow) return mediumAt(volume.levels[k], p);
-                    const double halfWidth = vhw * voxel;
-                    if (!(s.alpha > 0.f) || r < s.depth - halfWidth) return {};
-                    bool inLayer = r < s.depth + halfWidth;
-                    for (int n = 0; n < 27 && !inLayer; ++n) {
-                        if (n == 13) continue;
-                        const SeenFromCentre* sn =
-                            at(p + voxel * Vec3d(n % 3 - 1, (n / 3) % 3 - 1, n / 9 - 1));
-                        inLayer = sn && sn->alpha > 0.f && r < sn->depth;
-                    }
-                    if (!inLayer) return {};
-                    const double A = std::min(double(s.alpha), 0.9999);
-                    MediumSample out;
-                    out.sigma =
-                        std::min(opaqueSigma, float(-std::log(1.0 - A) / (2.0 * halfWidth)));
-                    out.color = s.color / float(s.alpha);
-                    if (getenv("LH_VIEW_OWN")) {
-                        const MediumSample own = mediumAt(volume.levels[k], p);
-                        if (own.sigma > 0.f) out.color = own.color;
-                    }
-                    return out;
-                }
-            }
+            if (keptView && keptView->projectIntoImage(p)) return mediumAt(volume.levels[k], p);
             const Vec3d offset = p - centre;
             const double r = offset.length();
             if (!(r > 0.0)) return {};
