@@ -2,6 +2,7 @@
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "render/radial_shell.h"
 
 #include <openvdb/tools/Count.h>
 
@@ -35,6 +36,10 @@ void printInfo(const InfoOptions& o) {
             "shell: the medium collapsed around (%g, %g, %g) (as predict does by default; "
             "predict --no-shell writes the fog)\n",
             volume.shellCentre->x(), volume.shellCentre->y(), volume.shellCentre->z());
+    else if (looksLikeUnmarkedShell(volume))
+        std::printf(
+            "shell: the medium collapsed around a point the file does not record (written before "
+            "shells recorded it)\n");
     for (std::size_t k = 0; k < volume.levels.size(); ++k) {
         const VolumeLevel& l = volume.levels[k];
         const WorldBox box = l.worldBounds();

@@ -49,6 +49,12 @@ void runShell(const ShellOptions& o) {
                       o.input.c_str(), done->x(), done->y(), done->z());
         throw InputError(text);
     }
+    if (looksLikeUnmarkedShell(in.volume))
+        throw InputError("'" + o.input +
+                         "' is already a shell (every voxel outside the camera's view holds the "
+                         "shell's opaque layer; it was written before shells recorded their "
+                         "centre): collapsing it again cannot bring back the medium that shell "
+                         "dropped; collapse the fog of 'lighthouse predict --no-shell' instead");
     const Vec3d c = centre ? *centre : defaultShellCentre(*in.volume.layout);
     if (centre && in.volume.layout->box(0).contains(c)) {
         // Inside a wall or an object every ray from the centre stops at once, and the shell

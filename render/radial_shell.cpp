@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -132,6 +133,30 @@ bool keepsCameraView(const LightingVolume& volume, const RadialShellOptions& opt
     return options.keepCameraView && volume.refCamera.has_value();
 }
 
+// A voxel's own alpha is 0.99: a ray from anywhere stops in the layer.
+float shellLayerDensity(double voxelSize) { return float(-std::log(0.01) / voxelSize); }
+
+bool looksLikeUnmarkedShell(const LightingVolume& volume) {
+    if (!volume.layout) return false;
+    const std::optional<PinholeCamera>& camera = volume.refCamera;
+    bool anyLayerVoxel = false;
+    const int levels = int(volume.levels.size());
+    for (int k = 0; k < levels; ++k) {
+        const VolumeLevel& level = volume.levels[k];
+        const double layer = shellLayerDensity(level.transform().voxelSize()[0]);
+        for (auto it = level.density->cbeginValueOn(); it; ++it) {
+            const Vec3d p = level.transform().indexToWorld(it.getCoord());
+            // A finer level hides this voxel (an import may have filled it from that level),
+            // and the camera's view was kept as predicted.
+            if (k + 1 < levels && volume.layout->box(k + 1).contains(p)) continue;
+            if (camera && camera->projectIntoImage(p)) continue;
+            if (!(std::abs(*it - layer) <= 0.01 * layer)) return false;
+            anyLayerVoxel = true;
+        }
+    }
+    return anyLayerVoxel;
+}
+
 LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre,
                                const RadialShellOptions& options) {
     options.validate();
@@ -161,8 +186,7 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
     for (int k = 0; k < layout.levels; ++k) {
         const double voxel = layout.voxelSize(k);                  // scene units
         const double halfWidth = options.halfWidthVoxels * voxel;  // scene units
-        // A voxel's own alpha is 0.99: a ray from anywhere stops in the layer.
-        const float opaqueSigma = float(-std::log(0.01) / voxel);
+        const float opaqueSigma = shellLayerDensity(voxel);
         shell.fillLevel(k, [&](const Vec3d& p) -> MediumSample {
             if (keptView && keptView->projectIntoImage(p)) return mediumAt(volume.levels[k], p);
             const Vec3d offset = p - centre;

@@ -42,3 +42,11 @@ add_test(NAME cli.warning.shell_centre_inside_a_wall
   COMMAND bash -c "\"$0\" shell example.vdb --centre -2.6,0,3 -o shell_wall.vdb 2>&1 | grep -q 'warning: --centre .* lies inside the medium .*choose a point in the room.s free space'"
           ${LH_CLI_EXE})
 lighthouse_cli_properties(cli.warning.shell_centre_inside_a_wall)
+# A shell that does not record its centre (written before shells did) is recognised all the
+# same: every voxel outside the camera's view holds the opaque layer.
+add_test(NAME cli.unmarked_shell
+  COMMAND bash ${LH_CLI_SCRIPTS}/unmarked_shell_test.sh ${LH_CLI_EXE} ${LH_CLI_WORK}/shell_example.vdb
+          ${LH_CLI_WORK}/unmarked_shell)
+set_tests_properties(cli.unmarked_shell PROPERTIES
+  FIXTURES_REQUIRED "lighthouse_cli;lighthouse_shell" TIMEOUT 120 LABELS cli
+  PASS_REGULAR_EXPRESSION "all cases passed")

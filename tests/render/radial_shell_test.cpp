@@ -199,5 +199,37 @@ TEST(RadialShell, TheShellRecordsItsCentre) {
     EXPECT_EQ(*shell.shellCentre, centre);
 }
 
+TEST(RadialShell, AShellThatDoesNotRecordItsCentreIsRecognised) {
+    const Vec3d centre = defaultShellCentre(smallLayout());
+    LightingVolume fog = onSmallLayout([&](const Vec3d& p) { return fogAround(centre, p); });
+    fog.refCamera = forwardCamera();
+    LightingVolume shell = collapseToShell(fog, centre);
+    EXPECT_FALSE(looksLikeUnmarkedShell(fog));
+    shell.shellCentre.reset();  // as written before shells recorded it
+    EXPECT_TRUE(looksLikeUnmarkedShell(shell));
+    // Without the camera the kept fog counts too, and it is no layer.
+    LightingVolume withoutCamera = shell;  // shares the grids, which it does not change
+    withoutCamera.refCamera.reset();
+    EXPECT_FALSE(looksLikeUnmarkedShell(withoutCamera));
+
+    // Every density outside the camera's view scaled: 0.5% (what rounding to 7 mantissa bits
+    // may do) is still the layer, 3% (an edit) is not.
+    const auto scaled = [&](float factor) {
+        LightingVolume v = shell;  // its grids are shared: copy them before scaling
+        for (VolumeLevel& level : v.levels) {
+            level.density = level.density->deepCopy();
+            for (auto it = level.density->beginValueOn(); it; ++it)
+                if (!v.refCamera->projectIntoImage(level.transform().indexToWorld(it.getCoord())))
+                    it.setValue(*it * factor);
+        }
+        return v;
+    };
+    EXPECT_TRUE(looksLikeUnmarkedShell(scaled(1.005f)));
+    EXPECT_FALSE(looksLikeUnmarkedShell(scaled(1.03f)));
+
+    // Nothing outside the camera's view, nothing to recognise.
+    EXPECT_FALSE(looksLikeUnmarkedShell(LightingVolume::fromLayout(smallLayout())));
+}
+
 }  // namespace
 }  // namespace lh
