@@ -62,16 +62,17 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
 // the volume has a reference camera.
 bool keepsCameraView(const LightingVolume& volume, const RadialShellOptions& options);
 
-// The density of the shell's opaque layer in a level of `voxelSize` scene units: each voxel
-// lets 1% of the light through (per scene unit).
+// The density (per scene unit) of the shell's opaque layer in a level whose voxels are
+// `voxelSize` scene units wide: one voxel of it lets 1% of the light through.
 float shellLayerDensity(double voxelSize);
 
 // Whether `volume` looks like a shell that does not record its centre (LightingVolume::
 // shellCentre), as those written before shells recorded it: on a layout, every active voxel
 // collapseToShell would have collapsed (outside the reference camera's view, or every voxel
-// without a camera) holds the layer's density within 1%, and there is at least one. The
-// network's fog never does: its density varies from voxel to voxel. A file whose values were
-// rounded to fewer than 7 mantissa bits, or edited, may not be recognised.
+// without a camera) and no finer level hides holds the layer's density within 1%, and there
+// is at least one. The network's fog never does: its density varies from voxel to voxel. A
+// file whose values were rounded to fewer than 7 mantissa bits, or edited, may not be
+// recognised.
 bool looksLikeUnmarkedShell(const LightingVolume& volume);
 
 }  // namespace lh
