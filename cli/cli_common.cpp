@@ -103,4 +103,15 @@ void warnOfHalfClamping(const VolumeSaveReport& saved, const std::string& hint) 
     if (!warning.empty()) std::cerr << "warning: " << warning << " (" << hint << ")\n";
 }
 
+void warnOfPointsOutside(const LightingVolume& volume, const std::vector<Vec3d>& points) {
+    for (const Vec3d& p : points) {
+        bool inside = false;
+        for (const VolumeLevel& level : volume.levels) inside = inside || level.containsWorld(p);
+        if (!inside)
+            std::cerr << "warning: point (" << p.x() << ", " << p.y() << ", " << p.z()
+                      << ") lies outside every level of the volume: its envmap sees the volume "
+                         "from outside\n";
+    }
+}
+
 }  // namespace lh::cli

@@ -24,6 +24,9 @@ VolumeFile loadVolumeFileForCli(const std::string& path, bool strict);
 // After a save: one "warning:" line on stderr when values were clamped to fit half precision,
 // ending with `hint` in parentheses (the flag that asked for halves, or how to avoid them).
 void warnOfHalfClamping(const VolumeSaveReport& saved, const std::string& hint);
+// One "warning:" line on stderr for each point outside every level of `volume`: its envmap
+// sees the volume from outside (a point in the wrong frame or units, most often).
+void warnOfPointsOutside(const LightingVolume& volume, const std::vector<Vec3d>& points);
 // "out.exr", 3 -> "out_003.exr"
 std::string numberedPath(const std::string& path, int index);
 // Replaces the extension: ("a/b.exr", ".png") -> "a/b.png".

@@ -287,6 +287,7 @@ void runPredict(const PredictOptions& o, int threads) {
                   << e.radiance.y() << ", " << e.radiance.z() << ")\n";
     }
     if (!points.empty()) {
+        warnOfPointsOutside(p.volume, points);
         const RenderVolume prepared(p.volume);
         for (size_t i = 0; i < points.size(); ++i) {
             const std::string path = numberedPath(withExtension(o.output, ".png"), int(i));

@@ -64,14 +64,7 @@ void renderEnvmaps(const RenderEnvmapOptions& o) {
 
     const LightingVolume volume = loadVolumeForCli(o.file, o.strict);
     const RenderVolume prepared(volume);
-    for (const Vec3d& p : points) {
-        bool inside = false;
-        for (const auto& level : volume.levels) inside = inside || level.containsWorld(p);
-        if (!inside)
-            std::cerr << "warning: point (" << p.x() << ", " << p.y() << ", " << p.z()
-                      << ") lies outside every level of the volume: its envmap sees the volume "
-                         "from outside\n";
-    }
+    warnOfPointsOutside(volume, points);
     for (std::size_t i = 0; i < points.size(); ++i) {
         const auto start = std::chrono::steady_clock::now();
         const ImageRGB envmap = renderEnvmap(prepared, points[i], options);

@@ -117,6 +117,12 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/models/standard.pt)
     COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$1\" --cameras \"$2\" -o pred_same.vdb 2>&1 | grep -q 'warning: the reference and source images are identical'"
             ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/cameras.json)
   lighthouse_cli_properties(cli.warning.predict_identical_photos)
+  # An envmap point outside the predicted volume (here 100 m to the right) still renders, with
+  # a warning that its envmap sees the volume from outside, as render-envmap warns.
+  add_test(NAME cli.warning.predict_point_outside_the_volume
+    COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" --at 100,0,1 -o pred_far.vdb 2>&1 | grep -q 'warning: point (100, 0, 1) lies outside every level of the volume' && test -s pred_far_000.exr"
+            ${LH_CLI_EXE} ${LH_PAIR}/ref.png ${LH_PAIR}/src.png ${LH_PAIR}/cameras.json)
+  lighthouse_cli_properties(cli.warning.predict_point_outside_the_volume)
   # A knee without a gain changes nothing: it runs, and says so.
   add_test(NAME cli.warning.predict_knee_without_gain
     COMMAND bash -c "\"$0\" predict --ref \"$1\" --src \"$2\" --cameras \"$3\" --highlight-knee 1.5 -o pred_knee_alone.vdb 2>&1 | grep -q 'warning: --highlight-knee changes nothing without a gain'"
