@@ -4,8 +4,9 @@
 // after another without stopping, so every envmap pays for all of them (about 23 voxels a ray
 // on the demo pair). Seen from a centre point c, the medium in one direction amounts to a
 // composite colour C (what the ray gathers, black behind the volume included) and an alpha
-// A = 1 - T. The shell replaces it by an opaque layer of colour C, 2 x 1.5 voxels deep, at the
-// depth where the ray from c has gathered half of A. Seen from c the envmap is the same up to
+// A = 1 - T. The shell replaces it by an opaque layer of colour C, 2 x 1.5 voxels deep, each
+// voxel letting 1e-4 of the light through, at the depth where the ray from c has gathered half
+// of A. Seen from c the envmap is the same up to
 // the lattice; from elsewhere each direction's light sits at one depth instead of being spread
 // along the ray, and rays stop at the first layer they meet.
 //
@@ -63,16 +64,17 @@ LightingVolume collapseToShell(const LightingVolume& volume, const Vec3d& centre
 bool keepsCameraView(const LightingVolume& volume, const RadialShellOptions& options);
 
 // The density (per scene unit) of the shell's opaque layer in a level whose voxels are
-// `voxelSize` scene units wide: one voxel of it lets 1% of the light through.
+// `voxelSize` scene units wide: one voxel of it lets 1e-4 of the light through (older shells:
+// 1%).
 float shellLayerDensity(double voxelSize);
 
 // Whether `volume` looks like a shell that does not record its centre (LightingVolume::
 // shellCentre), as those written before shells recorded it: on a layout, every active voxel
 // collapseToShell would have collapsed (outside the reference camera's view, or every voxel
-// without a camera) and no finer level hides holds the layer's density within 1%, and there
-// is at least one. The network's fog never does: its density varies from voxel to voxel. A
-// file whose values were rounded to fewer than 7 mantissa bits, or edited, may not be
-// recognised.
+// without a camera) and no finer level hides holds the layer's density, or that of the older
+// 1% layer, within 1%, and there is at least one. The network's fog never does: its density varies
+// from voxel to voxel. A file whose values were rounded to fewer than 7 mantissa bits, or edited,
+// may not be recognised.
 bool looksLikeUnmarkedShell(const LightingVolume& volume);
 
 }  // namespace lh

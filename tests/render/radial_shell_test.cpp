@@ -199,6 +199,20 @@ TEST(RadialShell, TheShellRecordsItsCentre) {
     EXPECT_EQ(*shell.shellCentre, centre);
 }
 
+TEST(RadialShell, OneVoxelOfTheLayerLetsATenThousandthOfTheLightThrough) {
+    const Vec3d centre = defaultShellCentre(smallLayout());
+    const LightingVolume fog = onSmallLayout([&](const Vec3d& p) { return fogAround(centre, p); });
+    const LightingVolume shell = collapseToShell(fog, centre);  // no camera: all collapsed
+    for (int k = 0; k < 2; ++k) {
+        const double voxel = smallLayout().voxelSize(k);
+        EXPECT_NEAR(std::exp(-shellLayerDensity(voxel) * voxel), 1e-4, 1e-7) << k;
+        std::size_t layerVoxels = 0;
+        for (auto it = shell.levels[k].density->cbeginValueOn(); it; ++it, ++layerVoxels)
+            ASSERT_FLOAT_EQ(*it, shellLayerDensity(voxel)) << k;
+        EXPECT_GT(layerVoxels, 0u) << k;
+    }
+}
+
 TEST(RadialShell, AShellThatDoesNotRecordItsCentreIsRecognised) {
     const Vec3d centre = defaultShellCentre(smallLayout());
     LightingVolume fog = onSmallLayout([&](const Vec3d& p) { return fogAround(centre, p); });
@@ -226,6 +240,9 @@ TEST(RadialShell, AShellThatDoesNotRecordItsCentreIsRecognised) {
     };
     EXPECT_TRUE(looksLikeUnmarkedShell(scaled(1.005f)));
     EXPECT_FALSE(looksLikeUnmarkedShell(scaled(1.03f)));
+    // Shells written before had a layer of half the density (1% through a voxel, not 1e-4).
+    EXPECT_TRUE(looksLikeUnmarkedShell(scaled(float(std::log(0.01) / std::log(1e-4)))));
+    EXPECT_FALSE(looksLikeUnmarkedShell(scaled(0.75f)));
 
     // Nothing outside the camera's view, nothing to recognise.
     EXPECT_FALSE(looksLikeUnmarkedShell(LightingVolume::fromLayout(smallLayout())));
