@@ -40,21 +40,22 @@ void runShell(const ShellOptions& o) {
         throw InputError("'" + o.input +
                          "' has no nested layout (lighthouse_layout metadata): only volumes "
                          "written by predict or make-example can be collapsed into a shell");
+    // A shell, marked or not, is refused with the same advice.
+    const std::string collapseTheFog =
+        ": collapsing it again cannot bring back the medium that shell dropped; collapse the fog "
+        "of 'lighthouse predict --no-shell' instead";
     if (const std::optional<Vec3d>& done = in.volume.shellCentre) {
         char text[512];
-        std::snprintf(text, sizeof text,
-                      "'%s' is already a shell, collapsed around (%g, %g, %g): collapsing it "
-                      "again cannot bring back the medium that shell dropped; collapse the fog "
-                      "of 'lighthouse predict --no-shell' instead",
-                      o.input.c_str(), done->x(), done->y(), done->z());
+        std::snprintf(text, sizeof text, "'%s' is already a shell, collapsed around (%g, %g, %g)%s",
+                      o.input.c_str(), done->x(), done->y(), done->z(), collapseTheFog.c_str());
         throw InputError(text);
     }
     if (looksLikeUnmarkedShell(in.volume))
         throw InputError("'" + o.input +
                          "' is already a shell (every voxel outside the camera's view holds the "
                          "shell's opaque layer; it was written before shells recorded their "
-                         "centre): collapsing it again cannot bring back the medium that shell "
-                         "dropped; collapse the fog of 'lighthouse predict --no-shell' instead");
+                         "centre)" +
+                         collapseTheFog);
     const Vec3d c = centre ? *centre : defaultShellCentre(*in.volume.layout);
     if (centre && in.volume.layout->box(0).contains(c)) {
         // Inside a wall or an object every ray from the centre stops at once, and the shell

@@ -139,10 +139,19 @@ namespace {
 // at the same scores (docs/network.md, "The shell").
 constexpr double kLayerTransmittance = 1e-4;
 constexpr double kOlderLayerTransmittance = 1e-2;
+
+// The density (per scene unit) at which one voxel `voxelSize` wide lets `transmittance` through.
+double densityLettingThrough(double transmittance, double voxelSize) {
+    return -std::log(transmittance) / voxelSize;
+}
+
+bool withinOnePercent(double value, double target) {
+    return std::abs(value - target) <= 0.01 * target;
+}
 }  // namespace
 
 float shellLayerDensity(double voxelSize) {
-    return float(-std::log(kLayerTransmittance) / voxelSize);
+    return float(densityLettingThrough(kLayerTransmittance, voxelSize));
 }
 
 bool looksLikeUnmarkedShell(const LightingVolume& volume) {
@@ -154,16 +163,14 @@ bool looksLikeUnmarkedShell(const LightingVolume& volume) {
         const VolumeLevel& level = volume.levels[k];
         const double voxel = level.transform().voxelSize()[0];
         const double layer = shellLayerDensity(voxel);
-        const double olderLayer = -std::log(kOlderLayerTransmittance) / voxel;
+        const double olderLayer = densityLettingThrough(kOlderLayerTransmittance, voxel);
         for (auto it = level.density->cbeginValueOn(); it; ++it) {
             const Vec3d p = level.transform().indexToWorld(it.getCoord());
             // A finer level hides this voxel (an import may have filled it from that level),
             // and the camera's view was kept as predicted.
             if (k + 1 < levels && volume.layout->box(k + 1).contains(p)) continue;
             if (camera && camera->projectIntoImage(p)) continue;
-            if (!(std::abs(*it - layer) <= 0.01 * layer) &&
-                !(std::abs(*it - olderLayer) <= 0.01 * olderLayer))
-                return false;
+            if (!withinOnePercent(*it, layer) && !withinOnePercent(*it, olderLayer)) return false;
             anyLayerVoxel = true;
         }
     }
