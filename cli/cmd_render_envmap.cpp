@@ -92,7 +92,10 @@ void addRenderEnvmapCommand(CLI::App& app) {
     cmd->add_option("--points", o->pointsFile, "Points file: one point 'x y z' per line");
     cmd->add_option("--size", o->size, "Envmap size WxH with W = 2H")->capture_default_str();
     addQuadratureFlags(cmd, o->quadrature);
-    cmd->add_option("--threshold", o->threshold, "Stop a ray once transmittance drops below")
+    cmd->add_option(
+           "--threshold", o->threshold,
+           "Stop a ray once its transmittance drops below this; what is left takes the colour "
+           "where it stopped")
         ->capture_default_str();
     cmd->add_flag("--reference", o->reference,
                   "Reference mode: 0.05-voxel fixed steps, no empty-space skipping, no early stop");

@@ -41,7 +41,8 @@ constexpr int kMaxHalvings = 12;         // a cell piece is cut into at most 2^1
 inline double surfaceCrossing(double x) { return x <= 2.0 ? logOfOneToTwo(x) : std::log(x); }
 
 // Adds one segment [t, t + dt] of constant medium `s` to the ray. Returns false once the
-// transmittance is below minT; records where it first falls below surfaceT.
+// transmittance is below minT, after crediting what is left of the ray with the segment's colour
+// (ray_marcher.h, "Early stop"); records where it first falls below surfaceT.
 inline bool addSegment(const RenderSample& s, double t, double dt, double minT, double surfaceT,
                        RayResult& r) {
     const double sigma = s.sigma, tau = sigma * dt;
@@ -66,7 +67,14 @@ inline bool addSegment(const RenderSample& s, double t, double dt, double minT, 
     // mispredict).
     if ((before >= surfaceT) & (r.transmittance < surfaceT))
         r.surfaceDistance = t + surfaceCrossing(before / surfaceT) / sigma;
-    return r.transmittance >= minT;
+    if (r.transmittance >= minT) return true;
+    // The rest of the ray sees an opaque surface of this colour (emission / sigma).
+    const double rest = r.transmittance / sigma;
+    r.radiance[0] += rest * s.emission[0];
+    r.radiance[1] += rest * s.emission[1];
+    r.radiance[2] += rest * s.emission[2];
+    r.transmittance = 0.0;
+    return false;
 }
 
 // Integrates [t0, t1] in equal midpoint steps no longer than `stepT`, sub-dividing optically

@@ -32,6 +32,14 @@
 // where the density is; dim walls and the light hidden behind the first optical depths are
 // not refined for nothing. Measured on an oracle volume, weighing by brightness gives 10x
 // less error relative to the mean radiance for the same time (docs/performance.md).
+//
+// Early stop: a ray stops once its transmittance T falls below minTransmittance, and what is left
+// of it sees an opaque surface of the colour where it stopped (T x emission / sigma is added,
+// T becomes 0). The medium behind a point where the light is nearly all absorbed is most often
+// more of the same surface, so the estimate errs by T times a difference of colours, where
+// dropping the rest errs by T times the whole radiance: on the demo pair's prediction, stopping
+// at 1e-3 with the estimate errs as much as stopping at 1e-4 without it (4.2e-4 against
+// 4.0e-4 of the mean radiance) and renders 9% more envmaps a second (docs/performance.md).
 #pragma once
 
 #include "render/render_volume.h"
@@ -42,7 +50,8 @@ namespace lh {
 
 struct MarchOptions {
     double stepVoxels = 0.5;         // step length, in voxels of the level being marched
-    double minTransmittance = 1e-4;  // stop once T drops below this (0: never stop early)
+    double minTransmittance = 1e-3;  // stop once T drops below this, the rest taking the
+                                     // colour where it stopped (0: never stop early)
     bool skipEmptySpace = true;      // jump over empty 8^3 bricks with a DDA
     double maxStepOpticalDepth =
         0.5;                       // fixed steps: sub-divide steps thicker than this (sigma * dt)
@@ -65,7 +74,8 @@ struct MarchOptions {
 
 struct RayResult {
     double radiance[3] = {0.0, 0.0, 0.0};  // linear RGB
-    double transmittance = 1.0;            // what is left for the (black) space behind
+    double transmittance = 1.0;            // what is left for the (black) space behind: 0
+                                           // after an early stop (MarchOptions)
     // Distance at which the transmittance first fell below MarchOptions::surfaceTransmittance
     // (1/2 by default): where the ray "hits" the scene (object insertion uses it as the scene's
     // depth). Infinite if it never did.

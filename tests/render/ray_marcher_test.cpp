@@ -74,6 +74,24 @@ TEST(RayMarcher, EarlyTerminationErrorIsBoundedByThreshold) {
     }
 }
 
+// What is left of a ray when it stops takes the colour where it stopped: in a medium of one
+// colour that is the exact answer, however early the stop. Dropping the rest instead would
+// leave the radiance short by the threshold (1 - 0.05 here), in either quadrature.
+TEST(RayMarcher, AnEarlyStopCreditsWhatIsLeftWithTheColourWhereItStopped) {
+    const float sigma = 20.f;
+    const RenderVolume volume(homogeneousCube(sigma, openvdb::Vec3s(2.f, 1.f, 0.5f)));
+    const double exact = 1.0 - std::exp(-sigma * 1.0);  // per unit of colour
+    for (int nodes : {0, 2}) {
+        MarchOptions o;
+        o.cellNodes = nodes;
+        o.minTransmittance = 0.05;
+        const RayResult r = marchRay(volume, Vec3d(0), Vec3d(1, 0, 0), o);
+        EXPECT_NEAR(r.radiance[0], 2.0 * exact, 1e-6) << "nodes " << nodes;
+        EXPECT_NEAR(r.radiance[2], 0.5 * exact, 1e-6) << "nodes " << nodes;
+        EXPECT_EQ(r.transmittance, 0.0) << "nodes " << nodes;
+    }
+}
+
 TEST(RayMarcher, RayMissingTheVolumeSeesBlack) {
     const RenderVolume volume(homogeneousCube(1.f, openvdb::Vec3s(1.f)));
     const RayResult r = marchRay(volume, Vec3d(0, 5, 0), Vec3d(1, 0, 0), MarchOptions{});

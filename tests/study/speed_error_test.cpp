@@ -34,14 +34,14 @@ TEST(SpeedError, RoundsKeepEachRowsOwnErrorAndTime) {
         EXPECT_TRUE(std::isfinite(r.relativeRmse) && r.relativeRmse >= 0.0) << r.setting;
     }
     // Errors belong to their rows: the paper's spheres converge as they get more, our
-    // default (2 nodes, bound 1, T<1e-4) beats their coarsest setting, and stopping rays at
-    // T<0.01 instead of 1e-4 loses light behind the first surfaces.
-    const SpeedErrorRow& ours = row("2 Gauss nodes/cell, bound 1, T<0.0001");
+    // default (2 nodes, bound 1, T<1e-3) beats their coarsest setting, and one node a cell
+    // errs more than two.
+    const SpeedErrorRow& ours = row("2 Gauss nodes/cell, bound 1, T<0.001");
     EXPECT_GT(row("32 spheres/level").relativeRmse, row("256 spheres/level").relativeRmse);
     EXPECT_LT(ours.relativeRmse, row("32 spheres/level").relativeRmse);
-    EXPECT_GT(row("2 Gauss nodes/cell, bound 1, T<0.01").relativeRmse, ours.relativeRmse);
+    EXPECT_GT(row("1 Gauss node/cell, bound 1, T<0.001").relativeRmse, ours.relativeRmse);
     // Both rounds ran and said so.
-    EXPECT_TRUE(said.count("round 1/2: ours-cells, 2 Gauss nodes/cell, bound 1, T<0.0001"));
+    EXPECT_TRUE(said.count("round 1/2: ours-cells, 2 Gauss nodes/cell, bound 1, T<0.001"));
     EXPECT_TRUE(said.count("round 2/2: paper-spheres, 256 spheres/level"));
 }
 

@@ -10,9 +10,9 @@ namespace {
 std::vector<SpeedErrorRow> knownRun() {
     return {
         {"reference-check", "step 0.025, tau<0.01", 2000.0, 1e-5, 99},  // not ours: never chosen
-        {"ours-cells", "1 Gauss node/cell, bound 8, T<0.0001", 5.0, 2e-2, 52},
-        {"ours-cells", "2 Gauss nodes/cell, bound 1, T<0.0001", 10.0, 5e-4, 75},  // the default
-        {"ours-cells", "2 Gauss nodes/cell, bound 3, T<0.0001", 8.0, 9e-4, 72},
+        {"ours-cells", "1 Gauss node/cell, bound 8, T<0.001", 5.0, 2e-2, 52},
+        {"ours-cells", "2 Gauss nodes/cell, bound 1, T<0.001", 10.0, 5e-4, 75},  // the default
+        {"ours-cells", "2 Gauss nodes/cell, bound 3, T<0.001", 8.0, 9e-4, 72},
         {"ours-steps", "step 0.5, T<0.0001, tau<0.5", 20.0, 2e-3, 57},
         {"paper-spheres", "32 spheres/level", 30.0, 5e-1, 33},
         {"paper-spheres", "128 spheres/level", 100.0, 4e-2, 51},
@@ -24,7 +24,7 @@ TEST(SpeedSummary, FindsTheFastestWithinTheBoundAndTheDefault) {
     const SpeedSummary s = summarizeSpeedAgainstError(knownRun());
     ASSERT_TRUE(s.fastestWithinBound);
     EXPECT_EQ(s.fastestWithinBound->setting,
-              "2 Gauss nodes/cell, bound 3, T<0.0001");  // 8 ms, 9e-4
+              "2 Gauss nodes/cell, bound 3, T<0.001");  // 8 ms, 9e-4
     ASSERT_TRUE(s.defaultSetting);
     EXPECT_EQ(s.defaultSetting->msPerEnvmap, 10.0);
     // A tighter bound than any of ours reaches: none.
@@ -36,7 +36,7 @@ TEST(SpeedSummary, ComparesEachPaperSettingWithOurFastestAtEqualOrLowerError) {
     ASSERT_EQ(s.againstPaper.size(), 3u);
     // 32 spheres (0.5): every row of ours qualifies; the fastest is 1 node at 5 ms: 6x.
     ASSERT_TRUE(s.againstPaper[0].ours);
-    EXPECT_EQ(s.againstPaper[0].ours->setting, "1 Gauss node/cell, bound 8, T<0.0001");
+    EXPECT_EQ(s.againstPaper[0].ours->setting, "1 Gauss node/cell, bound 8, T<0.001");
     EXPECT_DOUBLE_EQ(s.againstPaper[0].speedup, 6.0);
     // 128 spheres (4e-2): still the 1-node row (2e-2 <= 4e-2): 20x.
     EXPECT_DOUBLE_EQ(s.againstPaper[1].speedup, 20.0);
@@ -49,11 +49,11 @@ TEST(SpeedSummary, MarkdownStatesTheAnswers) {
     const std::string md = speedSummaryMarkdown(summarizeSpeedAgainstError(knownRun()));
     EXPECT_NE(
         md.find(
-            "ours-cells, 2 Gauss nodes/cell, bound 3, T<0.0001: 8 ms (125 envmaps/s) at 9.00e-04"),
+            "ours-cells, 2 Gauss nodes/cell, bound 3, T<0.001: 8 ms (125 envmaps/s) at 9.00e-04"),
         std::string::npos)
         << md;
     EXPECT_NE(md.find("| 128 spheres/level | 100 | 4.00e-02 | ours-cells, 1 Gauss node/cell, bound "
-                      "8, T<0.0001 | 5 | 2.00e-02 | 20.0 |"),
+                      "8, T<0.001 | 5 | 2.00e-02 | 20.0 |"),
               std::string::npos)
         << md;
     EXPECT_NE(md.find("| 512 spheres/level | 400 | 1.00e-05 | none |"), std::string::npos) << md;
