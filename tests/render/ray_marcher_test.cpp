@@ -76,7 +76,7 @@ TEST(RayMarcher, EarlyTerminationErrorIsBoundedByThreshold) {
 
 // What is left of a ray when it stops takes the colour where it stopped: in a medium of one
 // colour that is the exact answer, however early the stop. Dropping the rest instead would
-// leave the radiance short by the threshold (1 - 0.05 here), in either quadrature.
+// leave the radiance short by up to the threshold (5% here), in either quadrature.
 TEST(RayMarcher, AnEarlyStopCreditsWhatIsLeftWithTheColourWhereItStopped) {
     const float sigma = 20.f;
     const RenderVolume volume(homogeneousCube(sigma, openvdb::Vec3s(2.f, 1.f, 0.5f)));
