@@ -6,9 +6,9 @@
 // composite colour C (what the ray gathers, black behind the volume included) and an alpha
 // A = 1 - T. The shell replaces it by an opaque layer of colour C, 2 x 1.5 voxels deep, each
 // voxel letting 1e-4 of the light through, at the depth where the ray from c has gathered half
-// of A. Seen from c the envmap is the same up to
-// the lattice; from elsewhere each direction's light sits at one depth instead of being spread
-// along the ray, and rays stop at the first layer they meet.
+// of A. Seen from c the envmap is the same up to the lattice; from elsewhere each direction's
+// light sits at one depth instead of being spread along the ray, and rays stop at the first
+// layer they meet.
 //
 // Where the depth jumps between neighbouring directions (the edge of an object in front of a
 // wall), a ray from another point can pass behind the object's edge into space that c never
