@@ -105,9 +105,7 @@ void warnOfHalfClamping(const VolumeSaveReport& saved, const std::string& hint) 
 
 void warnOfPointsOutside(const LightingVolume& volume, const std::vector<Vec3d>& points) {
     for (const Vec3d& p : points) {
-        bool inside = false;
-        for (const VolumeLevel& level : volume.levels) inside = inside || level.containsWorld(p);
-        if (!inside)
+        if (finestLevelAt(volume, p) < 0)
             std::cerr << "warning: point (" << p.x() << ", " << p.y() << ", " << p.z()
                       << ") lies outside every level of the volume: its envmap sees the volume "
                          "from outside\n";

@@ -27,12 +27,6 @@ VolumeLevel deepCopy(const VolumeLevel& level) {
 
 }  // namespace
 
-int finestLevelAt(const LightingVolume& volume, const Vec3d& world) {
-    for (int k = int(volume.levels.size()) - 1; k >= 0; --k)
-        if (volume.levels[k].containsWorld(world)) return k;
-    return -1;
-}
-
 std::vector<VolumeLevel> makeShells(const LightingVolume& volume) {
     std::vector<VolumeLevel> shells;
     for (std::size_t k = 0; k < volume.levels.size(); ++k) {

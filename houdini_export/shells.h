@@ -14,10 +14,6 @@
 
 namespace lh {
 
-// Index of the finest level whose domain contains the world point, or -1. Levels must be
-// ordered coarsest first.
-int finestLevelAt(const LightingVolume& volume, const Vec3d& world);
-
 // Deep copies of every level with the voxels a finer level covers removed (inactive, zero).
 // Domains are kept: a shell still says which region its level spans.
 std::vector<VolumeLevel> makeShells(const LightingVolume& volume);

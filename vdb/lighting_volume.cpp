@@ -40,6 +40,12 @@ bool VolumeLevel::containsWorld(const Vec3d& p) const {
            i.z() >= lo.z() && i.z() <= hi.z();
 }
 
+int finestLevelAt(const LightingVolume& volume, const Vec3d& world) {
+    for (int k = int(volume.levels.size()) - 1; k >= 0; --k)
+        if (volume.levels[k].containsWorld(world)) return k;
+    return -1;
+}
+
 LightingVolume LightingVolume::fromLayout(const VolumeLayout& layout) {
     layout.validate();
     LightingVolume volume;

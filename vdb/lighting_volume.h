@@ -67,6 +67,10 @@ public:
     openvdb::Index64 memoryBytes() const;
 };
 
+// Index of the finest level whose domain contains the world point (the level that defines the
+// medium there), or -1 outside every level. Levels must be ordered coarsest first.
+int finestLevelAt(const LightingVolume& volume, const Vec3d& world);
+
 // "a FloatGrid", "a Vec3SGrid", or "a <value type> grid" for messages.
 std::string gridKind(const openvdb::GridBase& grid);
 

@@ -26,6 +26,17 @@ TEST(LightingVolume, FromLayoutHasNestedLevelsCoarsestFirst) {
     EXPECT_NEAR(b.max.z(), 7.0, 1e-12);
 }
 
+TEST(LightingVolume, FinestLevelAtNamesTheLevelThatDefinesThePoint) {
+    // Level 0 spans [-4, 4]^3; level 1 [-2, 2] x [-2, 2] x [0, 4]; level 2 [-1, 1]^2 x [0, 2].
+    const LightingVolume v = LightingVolume::fromLayout(VolumeLayout{8.0, 3, 8});
+    EXPECT_EQ(finestLevelAt(v, Vec3d(0.0, 0.0, 0.5)), 2);
+    EXPECT_EQ(finestLevelAt(v, Vec3d(1.5, 0.0, 0.5)), 1);   // beside the finest level
+    EXPECT_EQ(finestLevelAt(v, Vec3d(0.0, 0.0, 3.0)), 1);   // beyond it
+    EXPECT_EQ(finestLevelAt(v, Vec3d(0.0, 0.0, -3.0)), 0);  // behind the camera
+    EXPECT_EQ(finestLevelAt(v, Vec3d(0.0, 0.0, 5.0)), -1);  // outside every level
+    EXPECT_EQ(finestLevelAt(LightingVolume{}, Vec3d(0.0, 0.0, 0.5)), -1);
+}
+
 TEST(LightingVolume, FillLevelKeepsEmptySpaceInactive) {
     LightingVolume v = LightingVolume::fromLayout(VolumeLayout{8.0, 1, 16});
     // Half-voxel-aligned box: x in [0, 4) covers exactly 8 of 16 columns.
