@@ -104,10 +104,12 @@ void printHeader() {
              "irradiance rel. error", "radiance ratio");
 }
 
-// The display bias over the unobserved pixels, one line below the table.
-void printDisplayBias(double bias) {
+// The display bias over the unobserved pixels, one line below the table, and their PSNR with
+// it taken out (psnrWithoutBias): how much of the invented part's error is its brightness.
+void printDisplayBias(double bias, double psnrWithout) {
     std::cout << "display bias over unobserved content: " << formatNumber("%+.4f", bias)
-              << " (mean sRGB difference; positive: brighter than the truth)\n";
+              << " (mean sRGB difference; positive: brighter than the truth); without it, PSNR "
+              << formatNumber("%.2f", psnrWithout) << " dB\n";
 }
 
 // The lamps and windows (image/highlights.h), one line below the table: recall and precision,
@@ -143,7 +145,8 @@ void compareSingle(const CompareOptions& o) {
                  formatMetric(m.logLuminanceObserved), "-", "-");
     if (!std::isnan(m.psnrUnobserved)) {
         printRow("unobserved content", formatMetric(m.psnrUnobserved), "-", "-", "-", "-");
-        printDisplayBias(m.displayBiasUnobserved);
+        printDisplayBias(m.displayBiasUnobserved,
+                         psnrWithoutBias(m.psnrUnobserved, m.displayBiasUnobserved));
     }
 }
 
@@ -232,7 +235,8 @@ void compareBatch(const CompareOptions& o) {
     std::vector<EnvmapMetrics> metrics;
     std::vector<double> psnrAll, angularAll, psnrObserved, angularObserved;
     std::vector<double> logLuminanceAll, logLuminanceObserved, irradiance, radianceRatio;
-    std::vector<double> psnrUnobserved, biasUnobserved, highlightRecall, highlightPrecision;
+    std::vector<double> psnrUnobserved, biasUnobserved, unobservedWithoutBias;
+    std::vector<double> highlightRecall, highlightPrecision;
     int withMask = 0;
     for (const EnvmapPair& p : pairs) {
         const EnvmapMetrics m = compareFiles(p.pred, p.gt, p.mask, o.highlightRadius);
@@ -251,6 +255,8 @@ void compareBatch(const CompareOptions& o) {
             logLuminanceObserved.push_back(m.logLuminanceObserved);
             psnrUnobserved.push_back(m.psnrUnobserved);
             biasUnobserved.push_back(m.displayBiasUnobserved);
+            unobservedWithoutBias.push_back(
+                psnrWithoutBias(m.psnrUnobserved, m.displayBiasUnobserved));
         }
         const int done = int(metrics.size());
         if (total > 20 && (done % progressStep == 0 || done == total))
@@ -271,7 +277,7 @@ void compareBatch(const CompareOptions& o) {
     if (withMask > 0 && meanStd(psnrUnobserved).count > 0) {
         printRow("unobserved content", formatMeanStd(meanStd(psnrUnobserved), withMask), "-", "-",
                  "-", "-");
-        printDisplayBias(meanStd(biasUnobserved).mean);
+        printDisplayBias(meanStd(biasUnobserved).mean, meanStd(unobservedWithoutBias).mean);
     }
     printHighlights(o.highlightRadius, highlightText(highlightRecall, total),
                     highlightText(highlightPrecision, total));

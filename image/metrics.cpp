@@ -116,6 +116,15 @@ double displayBias(const ImageRGB& pred, const ImageRGB& gt,
     return biasOf(displayDifferences(pred, gt, mask));
 }
 
+double psnrWithoutBias(double psnrDb, double bias) {
+    if (std::isnan(psnrDb) || std::isnan(bias)) return kNaN;
+    const double meanSquare = std::pow(10.0, -psnrDb / 10.0);
+    const double variance = meanSquare - bias * bias;
+    // Rounding can leave a hair below zero where every difference is the same.
+    if (!(variance > 1e-12 * meanSquare)) return std::numeric_limits<double>::infinity();
+    return -10.0 * std::log10(variance);
+}
+
 double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
                            const std::vector<std::uint8_t>* mask) {
     checkComparable(pred, gt, mask);

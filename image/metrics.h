@@ -40,6 +40,13 @@ double angularErrorDegrees(const ImageRGB& pred, const ImageRGB& gt,
 double displayBias(const ImageRGB& pred, const ImageRGB& gt,
                    const std::vector<std::uint8_t>* mask = nullptr);
 
+// The PSNR (dB) of the same pixels with their display bias taken out: from psnr(pred, gt, mask)
+// and displayBias(pred, gt, mask), 10 log10(1 / (MSE - bias^2)), the variance of the displayed
+// differences in place of their mean square. It says how much of a PSNR is one wrong overall
+// brightness: far above `psnrDb`, mostly that; close to it, mostly wrong structure. +inf
+// where every difference is the same; NaN where either input is.
+double psnrWithoutBias(double psnrDb, double bias);
+
 // The six axis normals of the irradiance metric, in this order (world frame, OpenCV axes:
 // +y is down).
 enum class AxisNormal { PlusX, MinusX, PlusY, MinusY, PlusZ, MinusZ };

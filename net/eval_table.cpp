@@ -49,6 +49,14 @@ std::string signedCell(const std::vector<double>& values, int precision) {
     return out.str();
 }
 
+// psnrWithoutBias of each envmap.
+std::vector<double> withoutBias(const std::vector<double>& psnrDb,
+                                const std::vector<double>& bias) {
+    std::vector<double> out(psnrDb.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = psnrWithoutBias(psnrDb[i], bias[i]);
+    return out;
+}
+
 // Parses a row written by evalCsvRow; throws FileError naming `where`.
 EvalCsvRow parseCsvRow(const std::string& line, const std::string& where) {
     EvalCsvRow row;
@@ -134,11 +142,14 @@ std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::siz
        << "the six axis normals; radiance ratio: mean luminance over the sphere, predicted / "
        << "true (1 = the right total light; docs/metrics.md).\n\n"
        << "What each method invents (the unobserved pixels); display bias: mean sRGB difference, "
-       << "positive where the prediction is brighter than the truth:\n\n"
-       << "| method | PSNR unobserved (dB) | display bias unobserved |\n|---|---|---|\n";
+       << "positive where the prediction is brighter than the truth; without the bias: the PSNR "
+       << "were each envmap's invented part shifted to the right mean brightness:\n\n"
+       << "| method | PSNR unobserved (dB) | display bias unobserved | PSNR unobserved without "
+          "the bias (dB) |\n|---|---|---|---|\n";
     for (const auto& m : methods)
         md << "| " << m.name << " | " << cell(m.psnrUnobserved, 2) << " | "
-           << signedCell(m.displayBiasUnobserved, 3) << " |\n";
+           << signedCell(m.displayBiasUnobserved, 3) << " | "
+           << cell(withoutBias(m.psnrUnobserved, m.displayBiasUnobserved), 2) << " |\n";
     md << "\nLamps and windows, as a mirror ball would show them (pixels of luminance above 1): "
        << "recall, the share of the true ones (by solid angle) that the method also shows "
        << "above 1 within " << kHighlightRadiusDegrees << " degrees; precision, the share of "

@@ -97,6 +97,9 @@ grep -Eq "^observed content +$num +$num +$num +- +-$" <<<"$out" ||
     fail "half mask: no observed row: $out"
 [ "$(value_of observed 3 <<<"$out")" != "$psnr_all" ] || fail "half mask changed nothing: $out"
 ok --stdout "^observed content +no observed pixels" -- "$lh" compare a_000.exr a_001.exr --mask mask_none.png
+# The unobserved half of an exact prediction: no bias, and nothing left once it is taken out.
+ok --stdout "^display bias over unobserved content: [+]0[.]0000 .*; without it, PSNR inf dB$" \
+   -- "$lh" compare a_000.exr a_000.exr --mask mask_left.png
 
 error --expect "16x8.*32x16" -- "$lh" compare small.exr a_000.exr
 error --expect "mask 'small[.]png' is 16x8 but the envmap is 32x16" -- \
@@ -120,7 +123,7 @@ ok --stdout "^3 envmaps, 1 with an observed mask" \
    --stdout "^all content +$num ± $num +$num ± $num +$num ± $num +$num ± $num +$num ± $num$" \
    --stdout "^observed content +$num ± 0[.]00 +$num ± 0[.]00 +$num ± 0[.]00 +- +-$" \
    --stdout "^unobserved content +$num ± 0[.]00 +- +- +- +-$" \
-   --stdout "^display bias over unobserved content: [+-]0[.][0-9]{4} " \
+   --stdout "^display bias over unobserved content: [+-]0[.][0-9]{4} .*; without it, PSNR ($num|inf) dB$" \
    --stdout "$highlights ($num ± $num( [(][12] of 3[)])?|none), precision ($num ± $num( [(][12] of 3[)])?|none)$" \
    --file rows.csv -- "$lh" compare --batch pred gt --csv rows.csv
 if [ -s rows.csv ]; then

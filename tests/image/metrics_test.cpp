@@ -373,5 +373,36 @@ TEST(Metrics, UnobservedPixelsGetTheirOwnPsnrAndDisplayBias) {
     EXPECT_TRUE(std::isnan(compareEnvmaps(pred, gt, &all).psnrUnobserved));
 }
 
+TEST(Metrics, PsnrWithoutBiasKeepsOnlyTheStructure) {
+    // Truth displayed at 0.5 everywhere. A prediction 0.2 brighter everywhere is all bias (no
+    // structure left: +inf); one that alternates 0.3 and 0.7 has no bias (the PSNR stays); one
+    // that alternates 0.5 and 0.9 has bias 0.2 and a structure of +-0.2 (PSNR 10 log10(1 /
+    // 0.04) = 13.98 dB, 10 log10(1 / 0.08) = 10.97 dB with the bias).
+    const int w = 8, h = 4;
+    const float truth = srgbDecode(0.5f);
+    const ImageRGB gt = uniform(w, h, truth, truth, truth);
+    const auto displayed = [&](float even, float odd) {
+        ImageRGB image = gt;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                std::fill_n(image.at(x, y), 3, srgbDecode((x + y) % 2 ? odd : even));
+        return image;
+    };
+    const auto withoutBias = [&](const ImageRGB& pred) {
+        return psnrWithoutBias(psnr(pred, gt), displayBias(pred, gt));
+    };
+    const ImageRGB brighter = displayed(0.7f, 0.7f);
+    EXPECT_NEAR(psnr(brighter, gt), -10.0 * std::log10(0.04), 1e-3);
+    EXPECT_TRUE(std::isinf(withoutBias(brighter)));
+    const ImageRGB unbiased = displayed(0.3f, 0.7f);
+    EXPECT_NEAR(withoutBias(unbiased), psnr(unbiased, gt), 1e-3);
+    const ImageRGB both = displayed(0.5f, 0.9f);
+    EXPECT_NEAR(psnr(both, gt), -10.0 * std::log10(0.08), 1e-3);
+    EXPECT_NEAR(withoutBias(both), -10.0 * std::log10(0.04), 1e-3);
+    EXPECT_TRUE(std::isinf(psnrWithoutBias(INFINITY, 0.0)));  // an exact prediction
+    EXPECT_TRUE(std::isnan(psnrWithoutBias(NAN, 0.1)));
+    EXPECT_TRUE(std::isnan(psnrWithoutBias(20.0, NAN)));
+}
+
 }  // namespace
 }  // namespace lh
