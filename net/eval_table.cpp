@@ -143,7 +143,7 @@ std::string evalTableMarkdown(const std::vector<MethodScores>& methods, std::siz
        << "true (1 = the right total light; docs/metrics.md).\n\n"
        << "What each method invents (the unobserved pixels); display bias: mean sRGB difference, "
        << "positive where the prediction is brighter than the truth; without the bias: the PSNR "
-       << "were each envmap's invented part shifted to the right mean brightness:\n\n"
+       << "if each envmap's invented part were shifted to the right mean brightness:\n\n"
        << "| method | PSNR unobserved (dB) | display bias unobserved | PSNR unobserved without "
           "the bias (dB) |\n|---|---|---|---|\n";
     for (const auto& m : methods)
