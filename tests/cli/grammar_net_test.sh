@@ -13,9 +13,8 @@ set -u
 lh=$1
 work=$2
 pair=$3
-rm -rf -- "$work" && mkdir -p -- "$work" && cd -- "$work" || exit 1
-failures=0
-fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
+fresh_workdir "$work"
 run() {
     local name=$1
     shift
@@ -61,5 +60,4 @@ for f in old.vdb old_000.exr old_000.png; do [ -s "$f" ] || fail "predict --envm
     fail "predict --envmap-at: no single deprecation warning: $(cat predict_old.err)"
 echo "ok predict_at_points_png"
 
-[ $failures -eq 0 ] || { echo "$failures check(s) failed"; exit 1; }
-echo "all cases passed"
+finish

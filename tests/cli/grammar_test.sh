@@ -15,16 +15,9 @@ set -u
 lh=$1
 work=$2
 version=$3
-rm -rf -- "$work" && mkdir -p -- "$work" && cd -- "$work" || exit 1
-failures=0
-fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
+fresh_workdir "$work"
 
-# run NAME ARGS...: lighthouse ARGS, stdout in NAME.out and stderr in NAME.err; its status.
-run() {
-    local name=$1
-    shift
-    "$lh" "$@" </dev/null >"$name.out" 2>"$name.err"
-}
 # ok NAME ARGS...: must succeed without a deprecation warning.
 ok() {
     local name=$1
@@ -163,5 +156,4 @@ ok oracle_png oracle syn_new/000000 --levels 2 --res 8 --envmaps-out or_env --pn
 error oracle_png_alone "--png requires --envmaps-out" oracle syn_new/000000 --levels 2 --res 8 --png -o or2.vdb
 echo "ok png_wherever_images_are_written"
 
-[ $failures -eq 0 ] || { echo "$failures check(s) failed"; exit 1; }
-echo "all cases passed"
+finish

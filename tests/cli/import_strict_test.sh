@@ -10,14 +10,8 @@ set -u
 lh=$1
 set_value=$2
 work=$3
-rm -rf -- "$work" && mkdir -p -- "$work" && cd -- "$work" || exit 1
-failures=0
-fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
-run() {
-    local name=$1
-    shift
-    "$lh" "$@" </dev/null >"$name.out" 2>"$name.err"
-}
+source "$(dirname "$0")/harness.sh"
+fresh_workdir "$work"
 # error NAME REGEX ARGS...: exit 1, one stderr line "lighthouse: error: ...REGEX".
 error() {
     local name=$1 re=$2 code
@@ -57,5 +51,4 @@ error blender_inf "'inf_blender/level_0[.]vdb': grid 'density' holds 0 NaN, [1-9
     import inf_blender --from blender --strict -o inf.vdb
 run help import --help && grep -q -- "--strict" help.out || fail "import --help does not list --strict"
 
-[ $failures -eq 0 ] || { echo "$failures check(s) failed"; exit 1; }
-echo "all cases passed"
+finish

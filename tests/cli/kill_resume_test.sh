@@ -23,9 +23,8 @@ set -u
 lh=$1
 work=$2
 part=$3
-rm -rf -- "$work" && mkdir -p -- "$work" && cd -- "$work" || exit 1
-failures=0
-fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
+fresh_workdir "$work"
 
 # start NAME ARGS...: lighthouse ARGS in the background, output in NAME.log; its pid in $pid.
 start() {
@@ -291,5 +290,4 @@ others)
     exit 2
     ;;
 esac
-[ $failures -eq 0 ] || { echo "$failures check(s) failed"; exit 1; }
-echo "all cases passed"
+finish

@@ -10,10 +10,8 @@ set -u
 [ $# -eq 2 ] || { echo "usage: $0 LIGHTHOUSE WORKDIR" >&2; exit 2; }
 lh=$1
 work=$2
-rm -rf -- "$work" && mkdir -p -- "$work" && cd -- "$work" || exit 1
-
-failures=0
-fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
+fresh_workdir "$work"
 must() { "$@" >/dev/null 2>setup.err || { echo "setup failed: $*"; cat setup.err; exit 1; }; }
 
 must "$lh" make-example --levels 2 --res 16 -o room.vdb --cameras cameras.json
@@ -74,5 +72,4 @@ long=$(printf 'n%.0s' $(seq 246)).vdb
 ls -a | grep -q "\.tmp" && fail "a temporary was left behind: $(ls -a | grep '\.tmp')"
 echo "ok output_name_near_the_limit"
 
-[ $failures -eq 0 ] || { echo "$failures case(s) failed"; exit 1; }
-echo "all cases passed"
+finish

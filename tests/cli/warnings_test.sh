@@ -8,9 +8,8 @@ set -u
 [ $# -eq 2 ] || { echo "usage: $0 LIGHTHOUSE WORKDIR" >&2; exit 2; }
 lh=$1
 work=$2
-rm -rf -- "$work" && mkdir -p -- "$work" && cd -- "$work" || exit 1
-failures=0
-fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
+fresh_workdir "$work"
 
 "$lh" make-example --levels 2 --res 16 -o room.vdb >/dev/null 2>&1 || { echo "make-example failed"; exit 1; }
 
@@ -55,5 +54,4 @@ grep -q "^warning: object 1 " err.txt && fail "the visible object warned: $(cat 
 [ -s inserted.png ] || fail "insert wrote no image"
 echo "ok hidden_inserted_objects_warn"
 
-[ $failures -eq 0 ] || { echo "$failures case(s) failed"; exit 1; }
-echo "all cases passed"
+finish
