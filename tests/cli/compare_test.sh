@@ -21,12 +21,11 @@ scripts=$2
 python=/usr/bin/python3
 [ -x "$python" ] || { echo "SKIP: $python not found"; exit 77; }
 
-failures=0
-fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
 ok() { bash "$scripts/expect_success.sh" "$@" || failures=$((failures + 1)); }
 error() { bash "$scripts/expect_error.sh" "$@" || failures=$((failures + 1)); }
 
-rm -rf compare_test && mkdir compare_test && cd compare_test || { echo "cannot create compare_test"; exit 1; }
+fresh_workdir compare_test
 
 # Three 32x16 envmaps at different points (a_000..a_002.exr) and one 16x8 (small.exr/.png).
 "$lh" render-envmap ../example.vdb --at 0,0,1 --at 0.3,0,1.5 --at -0.2,0.1,2 --size 32x16 \
@@ -169,8 +168,4 @@ error --expect "pred/scene_b/env_1[.]exr' vs 'gt/scene_b/env_1[.]exr': .*16x8.*3
       --absent rows_small.csv -- "$lh" compare --batch pred gt --csv rows_small.csv
 error --expect "no envmaps env_<k>[.]exr under '[.][.]/adir'" -- "$lh" compare --batch pred ../adir
 
-if [ $failures -ne 0 ]; then
-    echo "compare_test: $failures check(s) failed"
-    exit 1
-fi
-echo "compare_test: all checks passed"
+finish

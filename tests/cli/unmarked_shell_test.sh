@@ -8,9 +8,8 @@ set -u
 lh=$1
 shell=$2
 work=$3
-rm -rf -- "$work" && mkdir -p -- "$work" || exit 1
-failures=0
-fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+source "$(dirname "$0")/harness.sh"
+fresh_workdir "$work"
 
 "$lh" export "$shell" --for houdini -o "$work/exp" >/dev/null 2>&1 || { echo "export failed"; exit 1; }
 grep -q '"shell_centre"' "$work/exp/manifest.json" || fail "the export does not record the shell's centre"
@@ -36,5 +35,4 @@ grep -q "^lighthouse: error: '.*old[.]vdb' is already a shell .*written before s
 # The volume it was collapsed from is not mistaken for a shell.
 "$lh" info "$work/../example.vdb" 2>&1 | grep -q "^shell:" && fail "info calls the example room a shell"
 
-[ $failures -eq 0 ] && echo "all cases passed"
-exit $failures
+finish
