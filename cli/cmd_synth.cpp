@@ -1,4 +1,5 @@
-// `lighthouse synth --seed S --count N -o DIR [--size 320x240] [--split train|test] [--shard K/N]`
+// `lighthouse synth --seed S --count N -o DIR [--size 320x240] [--split train|test] [--shard K/N]
+//  [--lamp-layout random|room]`
 #include "cli/cli_common.h"
 #include "cli/commands.h"
 #include "synth/dataset.h"
@@ -17,6 +18,7 @@ struct SynthCommandOptions {
     std::string size = "320x240";
     std::string envmapSize = "240x120";
     std::string shard;
+    std::string lampLayout = "random";
 };
 
 std::string duration(double seconds) {
@@ -44,6 +46,8 @@ void runSynth(SynthCommandOptions& o) {
     parseSize(o.size, o.synth.width, o.synth.height);
     parseSize(o.envmapSize, o.synth.envWidth, o.synth.envHeight);
     if (!o.shard.empty()) o.synth.shard = parseShard(o.shard);
+    o.synth.lampLayout =
+        o.lampLayout == "room" ? synth::LampLayout::Room : synth::LampLayout::Random;
     o.synth.validate();
     std::cerr << "synth: " << o.synth.count << " " << o.synth.split << " examples";
     if (o.synth.shard.active)
@@ -98,6 +102,12 @@ void addSynthCommand(CLI::App& app) {
         "--shard", o->shard,
         "K/N: write only examples i with i mod N = K (0-based) and a shard record; several shards "
         "share one --output, and `lighthouse merge` writes manifest.json and the contact sheet");
+    cmd->add_option("--lamp-layout", o->lampLayout,
+                    "Where the ceiling lights go: random (anywhere on the ceiling) or room (evenly "
+                    "along the middle of the ceiling, as real rooms are lit; the same scenes "
+                    "otherwise)")
+        ->check(CLI::IsMember({"random", "room"}))
+        ->capture_default_str();
     cmd->add_option("--hdri-dir", o->synth.hdriDir,
                     "Folder of equirectangular .exr panoramas for windows")
         ->capture_default_str();

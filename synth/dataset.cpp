@@ -101,7 +101,7 @@ ExampleSummary writeExample(uint64_t seed, const std::string& directory, const S
     summary.id = fs::path(directory).filename().string();
     for (int attempt = 0; attempt < kMaxAttempts; ++attempt) {
         const uint64_t sceneSeed = mixSeed(seed, attempt);
-        GeneratedScene gen = generateScene(sceneSeed, names, o.width, o.height);
+        GeneratedScene gen = generateScene(sceneSeed, names, o.width, o.height, o.lampLayout);
         Scene& scene = gen.scene;
         const Rig& rig = gen.rig;
         try {
@@ -205,20 +205,23 @@ namespace {
 // The manifest's description of the data set, without timings or examples; every shard of a
 // set must share it.
 nlohmann::json datasetHeader(const SynthOptions& o) {
-    return {{"generator_version", kGeneratorVersion},
-            {"split", o.split},
-            {"first_index", o.seed},
-            {"count", o.count},
-            {"view_size", {o.width, o.height}},
-            {"envmap_size", {o.envWidth, o.envHeight}},
-            {"envmaps_per_example", o.envmapsPerExample},
-            {"supersample", o.supersample},
-            {"bake",
-             {{"texel_size", o.bake.texelSize},
-              {"max_texels", o.bake.maxTexels},
-              {"gather_rays", o.bake.gatherRays},
-              {"light_samples", o.bake.lightSamples},
-              {"bounces", o.bake.bounces}}}};
+    nlohmann::json header = {{"generator_version", kGeneratorVersion},
+                             {"split", o.split},
+                             {"first_index", o.seed},
+                             {"count", o.count},
+                             {"view_size", {o.width, o.height}},
+                             {"envmap_size", {o.envWidth, o.envHeight}},
+                             {"envmaps_per_example", o.envmapsPerExample},
+                             {"supersample", o.supersample},
+                             {"bake",
+                              {{"texel_size", o.bake.texelSize},
+                               {"max_texels", o.bake.maxTexels},
+                               {"gather_rays", o.bake.gatherRays},
+                               {"light_samples", o.bake.lightSamples},
+                               {"bounces", o.bake.bounces}}}};
+    // Written only when not the default, so that sets made before the option keep their header.
+    if (o.lampLayout == LampLayout::Room) header["lamp_layout"] = "room";
+    return header;
 }
 
 std::string exampleId(int index) {

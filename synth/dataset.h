@@ -12,6 +12,7 @@
 
 #include "core/shard.h"
 #include "synth/radiance_field.h"
+#include "synth/scene_generator.h"
 
 #include <cstdint>
 #include <functional>
@@ -29,6 +30,7 @@ struct SynthOptions {
     int envmapsPerExample = 2;
     int supersample = 2;  // per axis, for views and envmaps
     std::string hdriDir;
+    LampLayout lampLayout = LampLayout::Random;  // where the ceiling lights go
     BakeOptions bake;
     // The oracle lighting volume (oracle.h) per example as oracle.vdb, in the layout of the
     // example's far depth with this many levels of oracleResolution^3 (0: none). It is the

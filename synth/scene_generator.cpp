@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "core/random.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lh::synth {
@@ -153,8 +154,20 @@ bool overlaps(const std::vector<Footprint>& placed, const Footprint& f) {
 
 }  // namespace
 
+std::vector<std::pair<double, double>> roomLampCentres(double roomWidth, double roomDepth,
+                                                       int count) {
+    std::vector<std::pair<double, double>> centres;
+    const bool alongDepth = roomDepth >= roomWidth;
+    const double length = alongDepth ? roomDepth : roomWidth;
+    for (int k = 0; k < count; ++k) {
+        const double along = -length / 2 + (k + 0.5) * length / count;
+        centres.emplace_back(alongDepth ? 0.0 : along, alongDepth ? along : 0.0);
+    }
+    return centres;
+}
+
 GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& panoramas, int width,
-                             int height) {
+                             int height, LampLayout lampLayout) {
     if (panoramas.empty())
         throw InputError("scene generator: no panoramas to show through windows");
     Random rng(seed);
@@ -265,15 +278,32 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
     }
 
     // Ceiling lights: 1-3, each an emissive panel on the ceiling or a small sphere hanging
-    // below it (visible to the camera when ahead of it), warm to neutral white.
-    for (int i = 0, n = rng.integer(1, 3); i < n; ++i) {
+    // below it (visible to the camera when ahead of it), warm to neutral white. The Room
+    // layout draws the same random numbers and then moves each light to its place on the
+    // ceiling's middle line, keeping a shift of up to kLampLayoutJitter from where the random
+    // layout put it (its random offset, scaled down), so that both layouts share every other
+    // draw of the scene.
+    const int lightCount = rng.integer(1, 3);
+    const auto laidOut = roomLampCentres(room.width, room.depth, lightCount);
+    const size_t lightsStart = scene.primitives.size();
+    const auto place = [&](double randomX, double randomZ, double maxX, double maxZ) {
+        if (lampLayout == LampLayout::Random) return std::make_pair(randomX, randomZ);
+        const auto [x, z] = laidOut[scene.primitives.size() - lightsStart];
+        return std::make_pair(std::clamp(x + kLampLayoutJitter * randomX / maxX, -maxX, maxX),
+                              std::clamp(z + kLampLayoutJitter * randomZ / maxZ, -maxZ, maxZ));
+    };
+    for (int i = 0; i < lightCount; ++i) {
         const double warmth = rng.uniform(0, 1);
         const Vec3d white(1.0, 0.97 - 0.12 * warmth, 0.95 - 0.3 * warmth);
         if (rng.chance(0.5)) {
             const double hx = rng.uniform(0.15, 0.5), hz = rng.uniform(0.15, 0.5);
-            Primitive q = wallQuad(
-                room, 2, rng.uniform(-room.width / 2 + hx + 0.2, room.width / 2 - hx - 0.2), hx,
-                rng.uniform(-room.depth / 2 + hz + 0.2, room.depth / 2 - hz - 0.2), hz);
+            const double maxX = room.width / 2 - hx - 0.2, maxZ = room.depth / 2 - hz - 0.2;
+            // z before x: the order in which the compiler evaluated the arguments of the call
+            // these draws were once made in, kept so that random layouts stay as they were.
+            const double randomZ = rng.uniform(-maxZ, maxZ);
+            const double randomX = rng.uniform(-maxX, maxX);
+            const auto [x, z] = place(randomX, randomZ, maxX, maxZ);
+            Primitive q = wallQuad(room, 2, x, hx, z, hz);
             q.emission = Emission::Constant;
             q.radiance = white * rng.uniform(kPanelRadiance[0], kPanelRadiance[1]);
             q.label = "panel";
@@ -282,9 +312,12 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
             Primitive lamp;
             lamp.shape = Shape::Sphere;
             lamp.half = Vec3d(rng.uniform(0.05, 0.15), 0, 0);
-            lamp.centre = Vec3d(rng.uniform(-room.width / 2 + 0.5, room.width / 2 - 0.5),
-                                -room.height + rng.uniform(0.3, 0.8),
-                                rng.uniform(-room.depth / 2 + 0.5, room.depth / 2 - 0.5));
+            const double maxX = room.width / 2 - 0.5, maxZ = room.depth / 2 - 0.5;
+            const double randomZ = rng.uniform(-maxZ, maxZ);  // in that order too
+            const double drop = rng.uniform(0.3, 0.8);        // below the ceiling, m
+            const double randomX = rng.uniform(-maxX, maxX);
+            const auto [x, z] = place(randomX, randomZ, maxX, maxZ);
+            lamp.centre = Vec3d(x, -room.height + drop, z);
             lamp.emission = Emission::Constant;
             lamp.radiance = white * rng.uniform(kLampRadiance[0], kLampRadiance[1]);
             lamp.label = "lamp";

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lh::synth {
@@ -29,6 +30,22 @@ struct Rig {
     PinholeCamera tgt;  // held-out view near ref
 };
 
+// Where the ceiling lights go. Random: anywhere on the ceiling, so a photo says nothing about
+// where the unseen ones are. Room: as real rooms are lit, evenly spaced along the middle of the
+// ceiling's longer axis (one light: its centre), each moved by at most kLampLayoutJitter, so the
+// walls a photo shows say where the lights it does not show are. Only the lights' positions
+// differ: the same seed gives the same room, windows, furniture and lights otherwise.
+enum class LampLayout { Random, Room };
+
+// Largest shift of a light from its place in the Room layout, along each horizontal axis, m.
+constexpr double kLampLayoutJitter = 0.15;
+
+// Horizontal centres (x, z) in the room's frame (origin at the floor's centre, metres) of
+// `count` lights laid out like a real room's: along the middle of the longer of the ceiling's
+// axes, at (k + 1/2) / count of its length for light k.
+std::vector<std::pair<double, double>> roomLampCentres(double roomWidth, double roomDepth,
+                                                       int count);
+
 struct GeneratedScene {
     Scene scene;  // in the world (reference camera) frame; exposure still 1
     Rig rig;
@@ -36,6 +53,6 @@ struct GeneratedScene {
 
 // `panoramas`: file names to choose window views from. Image size of the cameras in pixels.
 GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& panoramas, int width,
-                             int height);
+                             int height, LampLayout lampLayout = LampLayout::Random);
 
 }  // namespace lh::synth

@@ -1,7 +1,7 @@
 # Command-line tests of `lighthouse synth` and `lighthouse oracle` (included by CMakeLists.txt).
 
 lighthouse_cli_ok(help_synth
-  STDOUT "Usage:.*synth" "--seed" "--count" "--split" "--envmap-size"
+  STDOUT "Usage:.*synth" "--seed" "--count" "--split" "--envmap-size" "--lamp-layout"
   ARGS synth --help)
 lighthouse_cli_ok(help_oracle
   STDOUT "Usage:.*oracle" "--levels" "--res" "--envmaps-out"
@@ -19,6 +19,10 @@ lighthouse_cli_error(synth_bad_envmap_size
   EXPECT "--envmap-size must be W x H with W = 2 H"
   ABSENT syn_bad_env
   ARGS synth -o syn_bad_env --envmap-size 100x100 --count 1)
+lighthouse_cli_error(synth_bad_lamp_layout
+  PARSE_ERROR EXPECT "--lamp-layout: grid not in [{]random,room[}]"
+  ABSENT syn_bad_layout
+  ARGS synth -o syn_bad_layout --lamp-layout grid --count 1)
 lighthouse_cli_error(synth_zero_count
   EXPECT "--count must be in"
   ABSENT syn_zero

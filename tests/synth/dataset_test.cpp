@@ -8,6 +8,7 @@
 #include "tests/synth/synth_test_scenes.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -40,6 +41,20 @@ TEST(SynthDataset, SameSeedGivesIdenticalFiles) {
     }
     EXPECT_EQ(files, 13);  // 3 views x (exr, png) + depth + env (exr, png, mask, pos) + 2 json
     EXPECT_NE(exampleSeed("train", 3), exampleSeed("test", 3));
+}
+
+TEST(SynthDataset, ManifestRecordsTheRoomLampLayoutOnlyWhenChosen) {
+    const auto manifestOf = [](const std::string& name, LampLayout layout) {
+        const fs::path dir = freshDir(name);
+        SynthOptions o = smallOptions(dir.string());
+        o.count = 1;
+        o.lampLayout = layout;
+        writeDataset(o);
+        return nlohmann::json::parse(bytesOf(dir / "manifest.json"));
+    };
+    EXPECT_EQ(manifestOf("layout_room", LampLayout::Room).value("lamp_layout", ""), "room");
+    // Sets made with the default keep the header they had before the option.
+    EXPECT_FALSE(manifestOf("layout_random", LampLayout::Random).contains("lamp_layout"));
 }
 
 TEST(SynthDataset, StereoPairSatisfiesEpipolarGeometry) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lh::synth {
@@ -110,6 +111,70 @@ TEST(SceneGenerator, SameSeedGivesTheSameScene) {
                   sceneToJson(generateScene(seed, kPanoramas, 64, 48).scene, bake));
     EXPECT_NE(sceneToJson(generateScene(3, kPanoramas, 64, 48).scene, bake),
               sceneToJson(generateScene(4, kPanoramas, 64, 48).scene, bake));
+}
+
+TEST(SceneGenerator, RoomLampCentresLieEvenlyAlongTheMiddleOfTheLongerAxis) {
+    using Centres = std::vector<std::pair<double, double>>;
+    // 4 m wide, 9 m deep: along z, at (k + 1/2) * 3 m from the back wall.
+    EXPECT_EQ(roomLampCentres(4, 9, 3), (Centres{{0, -3}, {0, 0}, {0, 3}}));
+    // 6 m wide, 5 m deep: along x.
+    EXPECT_EQ(roomLampCentres(6, 5, 2), (Centres{{-1.5, 0}, {1.5, 0}}));
+    EXPECT_EQ(roomLampCentres(7, 4, 1), (Centres{{0, 0}}));
+}
+
+// The lights' horizontal bounds in the room's frame (x, z), as the generator keeps them off
+// the walls: a panel by its half-size and 0.2 m, a hanging lamp by 0.5 m.
+std::pair<double, double> lightBounds(const Primitive& room, const Primitive& light) {
+    if (light.label == "lamp") return {room.half.x() - 0.5, room.half.z() - 0.5};
+    return {room.half.x() - light.half.x() - 0.2, room.half.z() - light.half.y() - 0.2};
+}
+
+TEST(SceneGenerator, RoomLayoutMovesOnlyTheLightsOntoTheCeilingsMiddleLine) {
+    int rowsOfTwoOrMore = 0;
+    for (uint64_t seed = 0; seed < 40; ++seed) {
+        const Scene random = generateScene(seed, kPanoramas, 64, 48).scene;
+        const Scene laidOut = generateScene(seed, kPanoramas, 64, 48, LampLayout::Room).scene;
+        ASSERT_EQ(random.primitives.size(), laidOut.primitives.size()) << seed;
+        const Primitive& room = laidOut.primitives[laidOut.roomIndex];
+        const Primitive& randomRoom = random.primitives[random.roomIndex];
+        EXPECT_EQ(room.half, randomRoom.half) << seed;
+
+        std::vector<const Primitive*> lights;
+        for (size_t i = 0; i < laidOut.primitives.size(); ++i) {
+            const Primitive& p = laidOut.primitives[i];
+            const Primitive& q = random.primitives[i];
+            ASSERT_EQ(p.label, q.label) << seed;
+            EXPECT_EQ(p.radiance, q.radiance) << seed;
+            EXPECT_EQ(p.half, q.half) << seed;
+            if (p.label == "lamp" || p.label == "panel") {
+                lights.push_back(&p);
+                // The same height under the ceiling.
+                EXPECT_NEAR(room.toLocal(p.centre).y(), randomRoom.toLocal(q.centre).y(), 1e-9);
+            } else if (p.label != "room") {
+                // Everything else stays where it was in the room.
+                EXPECT_LT((room.toLocal(p.centre) - randomRoom.toLocal(q.centre)).length(), 1e-9)
+                    << seed << " " << p.label;
+            }
+        }
+        const auto expected = roomLampCentres(2 * room.half.x(), 2 * room.half.z(), lights.size());
+        ASSERT_EQ(expected.size(), lights.size());
+        rowsOfTwoOrMore += lights.size() >= 2;
+        for (size_t k = 0; k < lights.size(); ++k) {
+            const Vec3d local = room.toLocal(lights[k]->centre);
+            const auto [boundX, boundZ] = lightBounds(room, *lights[k]);
+            const auto near = [&](double value, double target, double bound) {
+                return value >= std::clamp(target - kLampLayoutJitter, -bound, bound) - 1e-9 &&
+                       value <= std::clamp(target + kLampLayoutJitter, -bound, bound) + 1e-9;
+            };
+            EXPECT_TRUE(near(local.x(), expected[k].first, boundX))
+                << seed << " light " << k << " x " << local.x() << " expected "
+                << expected[k].first;
+            EXPECT_TRUE(near(local.z(), expected[k].second, boundZ))
+                << seed << " light " << k << " z " << local.z() << " expected "
+                << expected[k].second;
+        }
+    }
+    EXPECT_GT(rowsOfTwoOrMore, 10);  // the spacing, not only the centre, was checked
 }
 
 }  // namespace
