@@ -711,8 +711,9 @@ void train(const TrainOptions& o, std::ostream& progressOfEveryRank) {
              << " input, " << config.planes << " planes, " << config.levels << " x "
              << config.resolution << "^3), " << trainDirs.size() << " training scenes, "
              << validationDirs.size() << " held out (" << validationScenes.size() << " validated), "
-             << torch::get_num_threads() << " threads on " << device.str() << ", " << o.supervision
-             << " supervision" << (o.augment ? ", augmented" : "") << "\n";
+             << torch::get_num_threads() << (torch::get_num_threads() == 1 ? " thread" : " threads")
+             << " on " << device.str() << ", " << o.supervision << " supervision"
+             << (o.augment ? ", augmented" : "") << "\n";
 
     std::unique_ptr<VggPerceptualLoss> vgg;
     if (!o.vggWeights.empty()) vgg = std::make_unique<VggPerceptualLoss>(o.vggWeights, device);
