@@ -34,7 +34,8 @@ struct Rig {
 // where the unseen ones are. Room: as real rooms are lit, evenly spaced along the middle of the
 // ceiling's longer axis (one light: its centre), each moved by at most kLampLayoutJitter, so the
 // walls a photo shows say where the lights it does not show are. Only the lights' positions
-// differ: the same seed gives the same room, windows, furniture and lights otherwise.
+// differ: the same seed gives the same room, windows, furniture and lights otherwise, and the
+// same camera unless a moved lamp comes within its clearance.
 enum class LampLayout { Random, Room };
 
 // Largest shift of a light from its place in the Room layout, along each horizontal axis, m.
