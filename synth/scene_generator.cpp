@@ -285,10 +285,9 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
     // draw of the scene.
     const int lightCount = rng.integer(1, 3);
     const auto laidOut = roomLampCentres(room.width, room.depth, lightCount);
-    const size_t lightsStart = scene.primitives.size();
-    const auto place = [&](double randomX, double randomZ, double maxX, double maxZ) {
+    const auto place = [&](int light, double randomX, double randomZ, double maxX, double maxZ) {
         if (lampLayout == LampLayout::Random) return std::make_pair(randomX, randomZ);
-        const auto [x, z] = laidOut[scene.primitives.size() - lightsStart];
+        const auto [x, z] = laidOut[light];
         return std::make_pair(std::clamp(x + kLampLayoutJitter * randomX / maxX, -maxX, maxX),
                               std::clamp(z + kLampLayoutJitter * randomZ / maxZ, -maxZ, maxZ));
     };
@@ -302,7 +301,7 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
             // these draws were once made in, kept so that random layouts stay as they were.
             const double randomZ = rng.uniform(-maxZ, maxZ);
             const double randomX = rng.uniform(-maxX, maxX);
-            const auto [x, z] = place(randomX, randomZ, maxX, maxZ);
+            const auto [x, z] = place(i, randomX, randomZ, maxX, maxZ);
             Primitive q = wallQuad(room, 2, x, hx, z, hz);
             q.emission = Emission::Constant;
             q.radiance = white * rng.uniform(kPanelRadiance[0], kPanelRadiance[1]);
@@ -316,7 +315,7 @@ GeneratedScene generateScene(uint64_t seed, const std::vector<std::string>& pano
             const double randomZ = rng.uniform(-maxZ, maxZ);  // in that order too
             const double drop = rng.uniform(0.3, 0.8);        // below the ceiling, m
             const double randomX = rng.uniform(-maxX, maxX);
-            const auto [x, z] = place(randomX, randomZ, maxX, maxZ);
+            const auto [x, z] = place(i, randomX, randomZ, maxX, maxZ);
             lamp.centre = Vec3d(x, -room.height + drop, z);
             lamp.emission = Emission::Constant;
             lamp.radiance = white * rng.uniform(kLampRadiance[0], kLampRadiance[1]);
